@@ -1,0 +1,5 @@
+"""Python package of tutorial_turtlebot, installed by catkin_python_setup()."""
+from catkin_pkg.python_setup import generate_distutils_setup
+from setuptools import setup
+
+setup(**generate_distutils_setup(packages=["tutorial_turtlebot"], package_dir={"": "src"}))

@@ -1,0 +1,332 @@
+"""The ``gazebo`` node: a pybullet stand-in for gzserver + gazebo_ros with a TurtleBot3.
+
+It owns the clock: physics runs at ``~max_step_size`` of sim time per step, paced to
+``~real_time_factor`` x wall time, and ``/clock`` is published for every node under
+``/use_sim_time``. Every message of one step carries that step's sim time as its stamp.
+
+Publications (relative names resolve in the node's namespace, as Gazebo's plugins do):
+  /clock (rosgraph_msgs/Clock)          >= ~clock_rate Hz, and before every stamped message
+  odom (nav_msgs/Odometry)              30 Hz, odom -> base_footprint
+  /tf (tf2_msgs/TFMessage)              30 Hz, odom -> base_footprint
+  joint_states (sensor_msgs/JointState) 30 Hz, wheel_left_joint, wheel_right_joint (rad, rad/s)
+  scan (sensor_msgs/LaserScan)          5 Hz, base_scan
+  imu (sensor_msgs/Imu)                 200 Hz, imu_link, linear acceleration includes gravity
+  A message type nobody subscribes to is not even computed.
+Subscriptions:
+  cmd_vel (geometry_msgs/Twist)         linear.x (m/s), angular.z (rad/s); kept until the next
+Services (std_srvs/Empty):
+  ~reset_simulation (time back to 0, robot to spawn), ~reset_world (robot to spawn),
+  ~pause_physics, ~unpause_physics
+Parameters (private):
+  ~model (burger)             burger, waffle or waffle_pi
+  ~world (turtlebot3_world)   a name from worlds/ or a path to an SDF file
+  ~x_pos, ~y_pos, ~yaw        spawn of base_footprint (m, m, rad); empty = the world's spawn
+  ~z_pos (0.0)                m
+  ~camera (false)             burger only: carry the AutoRace camera
+  ~lidar_model (gazebo)       gazebo (+inf no return) or lds01 (the real driver: 0.0)
+  ~odom_source (world)        world (ground truth from the spawn pose) or encoders (from 0)
+  ~clamp_cmd_vel (true)       hold cmd_vel to the model's limits, as the real firmware does
+  ~gui (false)                open pybullet's 3D window (only where a display exists)
+  ~real_time_factor (1.0)     sim seconds per wall second; 0 = as fast as possible
+  ~paused (false)             start with physics paused
+  ~max_step_size (0.0025)     s of sim time per physics step
+  ~clock_rate (100.0)         Hz of sim time
+  ~status_period (10.0)       wall s between status lines (sim time, factor, pose); 0 = never
+  ~seed (0)                   laser noise seed
+"""
+import math
+import os
+import queue
+import sys
+import threading
+import time
+
+import rospy
+import tf2_ros
+from geometry_msgs.msg import TransformStamped, Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Imu, JointState, LaserScan
+from std_srvs.srv import Empty, EmptyResponse
+
+from .errors import UserError
+from .kinematics import yaw_from_quat
+from .pacing import Pacer
+from .physics import WHEEL_JOINTS
+from .simulation import SimConfig, Simulation
+
+# Gazebo diff-drive plugin's pose covariance diagonal (x, y, z, roll, pitch, yaw).
+POSE_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
+ODOM_FRAME, BASE_FRAME = "odom", "base_footprint"
+SHUTDOWN_CHECK_STEPS = 200
+
+
+def _param(name, default, kind, allow_empty=False):
+    """A private param converted to ``kind`` (float, int, bool, str); UserError if it cannot be.
+    With ``allow_empty`` an empty value gives None."""
+    value = rospy.get_param("~" + name, default)
+    if allow_empty and (value is None or (isinstance(value, str) and value.strip() == "")):
+        return None
+    try:
+        if kind is bool:
+            if isinstance(value, str) and value.lower() in ("true", "false"):
+                return value.lower() == "true"
+            if isinstance(value, bool):
+                return value
+            raise ValueError
+        if kind is float and isinstance(value, bool):
+            raise ValueError
+        if kind is int and not float(value).is_integer():
+            raise ValueError
+        return kind(value)
+    except (TypeError, ValueError):
+        raise UserError("parameter ~%s: %r is not a %s" % (name, value, kind.__name__)) from None
+
+
+def read_config() -> SimConfig:
+    """The SimConfig named by the node's private params (raises UserError when one is bad)."""
+    return SimConfig(
+        model=_param("model", "burger", str),
+        world=_param("world", "turtlebot3_world", str),
+        x=_param("x_pos", None, float, allow_empty=True),
+        y=_param("y_pos", None, float, allow_empty=True),
+        z=_param("z_pos", 0.0, float),
+        yaw=_param("yaw", None, float, allow_empty=True),
+        camera=_param("camera", False, bool),
+        lidar_model=_param("lidar_model", "gazebo", str),
+        odom_source=_param("odom_source", "world", str),
+        clamp_cmd_vel=_param("clamp_cmd_vel", True, bool),
+        gui=_param("gui", False, bool),
+        time_step=_param("max_step_size", 0.0025, float),
+        clock_rate=_param("clock_rate", 100.0, float),
+        seed=_param("seed", 0, int),
+    )
+
+
+class SimNode:
+    """Converts between the Simulation and ROS messages, and runs the stepping loop."""
+
+    def __init__(self, sim: Simulation, real_time_factor: float, paused: bool,
+                 status_period: float):
+        self.sim = sim
+        self.pacer = Pacer(real_time_factor)
+        self.paused = paused
+        self.status_period = status_period
+        self._requests = queue.Queue()
+        self._wake = threading.Event()
+        self._command = None
+        self._build_messages()
+        self.pubs = {
+            "clock": rospy.Publisher("/clock", Clock, queue_size=1),
+            "odom": rospy.Publisher("odom", Odometry, queue_size=1),
+            "joint_states": rospy.Publisher("joint_states", JointState, queue_size=1),
+            "scan": rospy.Publisher("scan", LaserScan, queue_size=1),
+            "imu": rospy.Publisher("imu", Imu, queue_size=1),
+        }
+        self.tf = tf2_ros.TransformBroadcaster()
+        self.publishers = {"odom": self._publish_odom, "joint_states": self._publish_joints,
+                           "scan": self._publish_scan, "imu": self._publish_imu}
+        rospy.Subscriber("cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
+        for name, action in (("reset_simulation", sim.reset_simulation),
+                             ("reset_world", sim.reset_world),
+                             ("pause_physics", self._pause), ("unpause_physics", self._unpause)):
+            rospy.Service("~" + name, Empty, self._service_handler(name, action))
+
+    # --- messages --------------------------------------------------------------------------------
+
+    def _build_messages(self) -> None:
+        """Messages are filled in place each time: only the changing fields are written."""
+        laser = self.sim.laser
+        self.clock_msg = Clock()
+        self.odom_msg = Odometry()
+        self.odom_msg.header.frame_id = ODOM_FRAME
+        self.odom_msg.child_frame_id = BASE_FRAME
+        for i, value in enumerate(POSE_COVARIANCE_DIAGONAL):
+            self.odom_msg.pose.covariance[i * 7] = value
+        self.tf_msg = TransformStamped()
+        self.tf_msg.header.frame_id = ODOM_FRAME
+        self.tf_msg.child_frame_id = BASE_FRAME
+        self.joint_msg = JointState(name=list(WHEEL_JOINTS))
+        self.scan_msg = LaserScan(angle_min=laser.angle_min, angle_max=laser.angle_max,
+                                  angle_increment=laser.angle_increment, time_increment=0.0,
+                                  scan_time=0.0, range_min=laser.range_min,
+                                  range_max=laser.range_max, intensities=[0.0] * laser.samples)
+        self.scan_msg.header.frame_id = "base_scan"
+        self.imu_msg = Imu()
+        self.imu_msg.header.frame_id = "imu_link"
+
+    def _publish_odom(self, stamp) -> None:
+        wants_odom = self.pubs["odom"].get_num_connections() > 0
+        wants_tf = self.tf.pub_tf.get_num_connections() > 0
+        if not (wants_odom or wants_tf):
+            return
+        state = self.sim.odom()
+        if wants_odom:
+            msg = self.odom_msg
+            msg.header.stamp = stamp
+            p, q = msg.pose.pose.position, msg.pose.pose.orientation
+            p.x, p.y, p.z = state.position
+            q.x, q.y, q.z, q.w = state.orientation
+            lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
+            lin.x, lin.y, lin.z = state.linear
+            ang.x, ang.y, ang.z = state.angular
+            self.pubs["odom"].publish(msg)
+        if wants_tf:
+            t = self.tf_msg
+            t.header.stamp = stamp
+            tr, rot = t.transform.translation, t.transform.rotation
+            tr.x, tr.y, tr.z = state.position
+            rot.x, rot.y, rot.z, rot.w = state.orientation
+            self.tf.sendTransform(t)
+
+    def _publish_joints(self, stamp) -> None:
+        if self.pubs["joint_states"].get_num_connections() == 0:
+            return
+        positions, velocities = self.sim.joint_states()
+        msg = self.joint_msg
+        msg.header.stamp = stamp
+        msg.position, msg.velocity = list(positions), list(velocities)
+        self.pubs["joint_states"].publish(msg)
+
+    def _publish_scan(self, stamp) -> None:
+        if self.pubs["scan"].get_num_connections() == 0:
+            return
+        msg = self.scan_msg
+        msg.header.stamp = stamp
+        msg.ranges = self.sim.scan().tolist()
+        self.pubs["scan"].publish(msg)
+
+    def _publish_imu(self, stamp) -> None:
+        if self.pubs["imu"].get_num_connections() == 0:
+            return
+        state = self.sim.imu()
+        msg = self.imu_msg
+        msg.header.stamp = stamp
+        q, w, a = msg.orientation, msg.angular_velocity, msg.linear_acceleration
+        q.x, q.y, q.z, q.w = state.orientation
+        w.x, w.y, w.z = state.angular_velocity
+        a.x, a.y, a.z = state.linear_acceleration
+        self.pubs["imu"].publish(msg)
+
+    def _publish_due(self, due) -> None:
+        """Publish what is due at this step: /clock first, so no stamp is ever ahead of it."""
+        stamp = rospy.Time(*divmod(self.sim.time_ns, 1_000_000_000))
+        if due != ["clock"] and not any(self._wanted(name) for name in due if name != "clock"):
+            due = [name for name in due if name == "clock"]
+        if not due:
+            return
+        self.clock_msg.clock = stamp
+        self.pubs["clock"].publish(self.clock_msg)
+        for name in due:
+            if name != "clock":
+                self.publishers[name](stamp)
+
+    def _wanted(self, name) -> bool:
+        if name == "odom" and self.tf.pub_tf.get_num_connections() > 0:
+            return True
+        return self.pubs[name].get_num_connections() > 0
+
+    # --- input -----------------------------------------------------------------------------------
+
+    def _on_cmd_vel(self, msg: Twist) -> None:
+        linear, angular = msg.linear.x, msg.angular.z
+        if not (math.isfinite(linear) and math.isfinite(angular)):
+            rospy.logwarn_throttle(5.0, "cmd_vel ignored: NaN or infinite field (linear.x=%r, "
+                                   "angular.z=%r)" % (linear, angular))
+            return
+        self._command = (linear, angular)
+
+    def _service_handler(self, name, action):
+        def handle(_request):
+            done = threading.Event()
+            self._requests.put((action, done))
+            self._wake.set()
+            if not done.wait(10.0):
+                rospy.logwarn("%s: the simulation loop did not answer within 10 s", name)
+            return EmptyResponse()
+        return handle
+
+    def _pause(self) -> None:
+        self.paused = True
+
+    def _unpause(self) -> None:
+        self.paused = False
+
+    def _handle_requests(self) -> None:
+        while not self._requests.empty():
+            action, done = self._requests.get()
+            action()
+            done.set()
+            self.pacer.restart(self.sim.time)
+            self._publish_due(["clock"])  # let everyone see a reset time at once
+
+    # --- loop ------------------------------------------------------------------------------------
+
+    def spin(self) -> None:
+        """Step, publish and pace until ROS shuts down."""
+        sim, pacer = self.sim, self.pacer
+        pacer.restart(sim.time)
+        self._publish_due(["clock"])
+        next_status = time.monotonic() + self.status_period
+        steps = 0
+        while True:
+            steps += 1
+            if steps % SHUTDOWN_CHECK_STEPS == 0 or self.paused:
+                if rospy.is_shutdown():
+                    break
+                if self.status_period > 0 and time.monotonic() >= next_status:
+                    next_status = time.monotonic() + self.status_period
+                    self._log_status()
+            if not self._requests.empty():
+                self._handle_requests()
+            if self.paused:
+                self._wake.wait(0.1)
+                self._wake.clear()
+                pacer.restart(sim.time)
+                continue
+            command, self._command = self._command, None
+            if command is not None:
+                self._apply_command(*command)
+            self._publish_due(sim.step())
+            pacer.wait(sim.time)
+
+    def _apply_command(self, linear: float, angular: float) -> None:
+        problems = self.sim.command(linear, angular)
+        if problems:
+            rospy.logwarn_throttle(5.0, "cmd_vel beyond the %s's limits: %s"
+                                   % (self.sim.spec.name, "; ".join(problems)))
+
+    def _log_status(self) -> None:
+        factor = self.pacer.achieved(self.sim.time)
+        (x, y, _), orn = self.sim.ground_truth()
+        rospy.loginfo("sim time %.1f s, real-time factor %s, pose x %.2f y %.2f yaw %.2f%s",
+                      self.sim.time, "n/a" if factor is None else "%.2f" % factor, x, y,
+                      yaw_from_quat(orn), " (paused)" if self.paused else "")
+
+
+def main() -> None:
+    """Entry point of ``scripts/sim``."""
+    rospy.init_node("gazebo", disable_signals=False)
+    try:
+        config = read_config()
+        real_time_factor = _param("real_time_factor", 1.0, float)
+        if not (math.isfinite(real_time_factor) and real_time_factor >= 0):
+            raise UserError("parameter ~real_time_factor: %r must be >= 0 (0 = as fast as "
+                            "possible)" % real_time_factor)
+        paused = _param("paused", False, bool)
+        status_period = _param("status_period", 10.0, float)
+        if config.gui and not os.environ.get("DISPLAY"):
+            rospy.logwarn("gazebo: gui:=true but there is no display (DISPLAY is unset): "
+                          "running headless")
+            config.gui = False
+        sim = Simulation(config)
+    except UserError as err:
+        rospy.logfatal("gazebo: %s", err)
+        sys.exit(2)
+    rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
+                  sim.spec.name, sim.world.name, sim.spawn[0], sim.spawn[1], sim.spawn[3],
+                  config.time_step, real_time_factor or "max")
+    try:
+        SimNode(sim, real_time_factor, paused, status_period).spin()
+    finally:
+        sim.close()
