@@ -1,0 +1,381 @@
+"""Read a URDF file into plain dataclasses, with neither ROS nor pybullet.
+
+Units: metres, kilograms, kg*m^2, radians. A ``Pose`` is a child frame's origin in its parent
+frame: ``xyz`` then ``rpy`` as URDF defines it (fixed axes: R = Rz(yaw) * Ry(pitch) * Rx(roll)).
+Every problem with the file raises ``UrdfError`` whose message is one line:
+``<file>:<line>: <element at fault>: <what is wrong>``.
+"""
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Dict, NoReturn, Optional, Tuple
+from xml.etree import ElementTree
+from xml.parsers import expat
+
+import numpy as np
+
+from .errors import UrdfError
+from .robot_models import get_model
+
+URDF_DIR = Path(__file__).resolve().parents[2] / "urdf"
+NAMED = ("robot", "link", "joint", "material")  # elements that errors call by name
+JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic", "floating", "planar")
+Vector3 = Tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class Pose:
+    """Origin of a child frame in its parent frame: xyz (m) and fixed-axis roll, pitch, yaw (rad)."""
+
+    xyz: Vector3 = (0.0, 0.0, 0.0)
+    rpy: Vector3 = (0.0, 0.0, 0.0)
+
+    def matrix(self) -> np.ndarray:
+        """4x4 homogeneous transform T with p_parent = T @ p_child."""
+        (cr, cp, cy), (sr, sp, sy) = np.cos(self.rpy), np.sin(self.rpy)
+        t = np.eye(4)
+        t[:3, :3] = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]]
+        t[:3, 3] = self.xyz
+        return t
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """A shape in its own frame. ``size``: box (x, y, z); cylinder (radius, length) along z;
+    sphere (radius,); mesh (scale x, y, z) with ``filename``."""
+
+    shape: str
+    size: Tuple[float, ...]
+    filename: str = ""
+
+
+@dataclass(frozen=True)
+class Collision:
+    """A collision shape placed at ``origin`` in its link frame."""
+
+    origin: Pose
+    geometry: Geometry
+
+
+@dataclass(frozen=True)
+class Visual:
+    """A visual shape placed at ``origin`` in its link frame; ``rgba`` in 0..1, None if uncoloured."""
+
+    origin: Pose
+    geometry: Geometry
+    material: str = ""
+    rgba: Optional[Tuple[float, float, float, float]] = None
+
+
+@dataclass(frozen=True)
+class Inertial:
+    """Mass (kg) and inertia tensor (kg*m^2: ixx, ixy, ixz, iyy, iyz, izz) about ``origin``."""
+
+    mass: float
+    inertia: Tuple[float, float, float, float, float, float]
+    origin: Pose = Pose()
+
+
+@dataclass(frozen=True)
+class Link:
+    """A URDF link; ``inertial`` is None for a bare frame (base_footprint, imu_link, cameras)."""
+
+    name: str
+    inertial: Optional[Inertial] = None
+    collisions: Tuple[Collision, ...] = ()
+    visuals: Tuple[Visual, ...] = ()
+
+    @property
+    def mass(self) -> float:
+        """kg; 0 for a link without an inertial."""
+        return self.inertial.mass if self.inertial else 0.0
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A URDF joint: ``origin`` is the child frame in the parent frame at joint position 0;
+    ``axis`` is a unit-free direction in the child (= joint) frame."""
+
+    name: str
+    type: str
+    parent: str
+    child: str
+    origin: Pose = Pose()
+    axis: Vector3 = (1.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class RobotDescription:
+    """A whole robot: links and joints by name, in file order. The tree is checked on reading:
+    every joint names known links, each link has at most one parent, there is one root."""
+
+    name: str
+    path: str
+    links: Dict[str, Link]
+    joints: Dict[str, Joint]
+    _parent_joint: Dict[str, Joint] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "_parent_joint", {j.child: j for j in self.joints.values()})
+
+    @property
+    def root_link(self) -> str:
+        """Name of the one link that is no joint's child (base_footprint on a TurtleBot3)."""
+        return next(name for name in self.links if name not in self._parent_joint)
+
+    @property
+    def mass(self) -> float:
+        """Total mass of all links, kg."""
+        return sum(link.mass for link in self.links.values())
+
+    def parent_joint(self, link: str) -> Optional[Joint]:
+        """The joint whose child is ``link``; None for the root."""
+        self._check_link(link)
+        return self._parent_joint.get(link)
+
+    def transform(self, frame: str, target: str) -> np.ndarray:
+        """4x4 pose of link ``target`` in link ``frame`` (p_frame = T @ p_target), every joint at
+        position 0. Translation in m is ``T[:3, 3]``, rotation ``T[:3, :3]``."""
+        return np.linalg.inv(self._pose_in_root(frame)) @ self._pose_in_root(target)
+
+    def _pose_in_root(self, link: str) -> np.ndarray:
+        self._check_link(link)
+        pose = np.eye(4)
+        while link in self._parent_joint:
+            joint = self._parent_joint[link]
+            pose = joint.origin.matrix() @ pose
+            link = joint.parent
+        return pose
+
+    def _check_link(self, link: str) -> None:
+        if link not in self.links:
+            raise KeyError("no link %r in %s" % (link, self.path))
+
+
+def urdf_path(model_name: str, with_camera: bool = False) -> str:
+    """Path of the URDF shipped for a TurtleBot3 model. ``with_camera`` on a model that carries no
+    camera (burger) gives its AutoRace variant; an unknown model raises ModelError."""
+    spec = get_model(model_name)
+    if with_camera and spec.camera is None:
+        return str(URDF_DIR / ("turtlebot3_%s_for_autorace.urdf" % spec.name))
+    return str(URDF_DIR / spec.urdf_name)
+
+
+def read_urdf(path) -> RobotDescription:
+    """Read and check the URDF file at ``path``; any problem raises a one-line UrdfError."""
+    return _Reader(str(path)).read()
+
+
+class _Reader:
+    """One pass over one file; knows each element's line for the error messages."""
+
+    def __init__(self, path: str):
+        self.path = path
+        self.lines: Dict[ElementTree.Element, int] = {}
+
+    def read(self) -> RobotDescription:
+        root = self._parse_xml()
+        if root.tag != "robot":
+            self._fail(root, "the root element must be <robot>")
+        name = self._name(root)
+        materials = {}
+        for elem in root.findall("material"):
+            rgba = self._rgba(elem, "material %r" % self._name(elem))
+            if rgba is not None:
+                materials[elem.get("name")] = rgba
+        links: Dict[str, Link] = {}
+        for elem in root.findall("link"):
+            link = self._link(elem, materials)
+            if link.name in links:
+                self._fail(elem, "defined twice")
+            links[link.name] = link
+        if not links:
+            self._fail(root, "no <link> in robot %r" % name)
+        joints: Dict[str, Joint] = {}
+        parent_of: Dict[str, ElementTree.Element] = {}
+        for elem in root.findall("joint"):
+            joint = self._joint(elem, links)
+            if joint.name in joints:
+                self._fail(elem, "defined twice")
+            if joint.child in parent_of:
+                first = parent_of[joint.child]
+                self._fail(elem, "link %r already has a parent, joint %r (line %s)"
+                           % (joint.child, first.get("name"), self.lines[first]))
+            joints[joint.name] = joint
+            parent_of[joint.child] = elem
+        self._check_tree(root, links, joints)
+        return RobotDescription(name, self.path, links, joints)
+
+    def _parse_xml(self) -> ElementTree.Element:
+        builder = ElementTree.TreeBuilder()
+        parser = expat.ParserCreate()
+
+        def start(tag, attrib):
+            self.lines[builder.start(tag, attrib)] = parser.CurrentLineNumber
+
+        parser.StartElementHandler = start
+        parser.EndElementHandler = builder.end
+        try:
+            with open(self.path, "rb") as stream:
+                parser.ParseFile(stream)
+        except OSError as err:
+            raise UrdfError("%s: cannot read URDF file: %s" % (self.path, err.strerror)) from None
+        except expat.ExpatError as err:
+            raise UrdfError("%s:%d: malformed XML: %s (column %d)"
+                            % (self.path, err.lineno, expat.ErrorString(err.code),
+                               err.offset + 1)) from None
+        return builder.close()
+
+    def _check_tree(self, root, links, joints) -> None:
+        children = {j.child for j in joints.values()}
+        roots = [name for name in links if name not in children]
+        if not roots:
+            self._fail(root, "no root link: every link is the child of a joint (a loop)")
+        if len(roots) > 1:
+            self._fail(root, "%d root links (%s): links must form one tree joined by joints"
+                       % (len(roots), ", ".join(roots)))
+        reached, todo = {roots[0]}, [roots[0]]
+        while todo:
+            parent = todo.pop()
+            for joint in joints.values():
+                if joint.parent == parent and joint.child not in reached:
+                    reached.add(joint.child)
+                    todo.append(joint.child)
+        if len(reached) < len(links):
+            lost = [name for name in links if name not in reached]
+            self._fail(root, "links %s form a loop cut off from root link %r"
+                       % (", ".join(lost), roots[0]))
+
+    def _link(self, elem, materials) -> Link:
+        name = self._name(elem)
+        owner = "link %r" % name
+        inertial = None
+        inertial_elem = elem.find("inertial")
+        if inertial_elem is not None:
+            mass_elem = self._child(inertial_elem, "mass", owner)
+            mass = self._number(mass_elem, "value", owner)
+            if mass < 0:
+                self._fail(mass_elem, "mass %g kg is negative" % mass, owner)
+            inertia_elem = self._child(inertial_elem, "inertia", owner)
+            inertia = tuple(self._number(inertia_elem, key, owner)
+                            for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+            inertial = Inertial(mass, inertia, self._origin(inertial_elem, owner))
+        collisions = tuple(Collision(self._origin(c, owner), self._geometry(c, owner))
+                           for c in elem.findall("collision"))
+        visuals = tuple(self._visual(v, owner, materials) for v in elem.findall("visual"))
+        return Link(name, inertial, collisions, visuals)
+
+    def _visual(self, elem, owner, materials) -> Visual:
+        visual = Visual(self._origin(elem, owner), self._geometry(elem, owner))
+        material = elem.find("material")
+        if material is None:
+            return visual
+        name = material.get("name", "")
+        rgba = self._rgba(material, owner)
+        if rgba is None and name:
+            if name not in materials:
+                self._fail(material, "has no <color> and no robot-level definition", owner)
+            rgba = materials[name]
+        return Visual(visual.origin, visual.geometry, name, rgba)
+
+    def _rgba(self, material, owner):
+        color = material.find("color")
+        if color is None:
+            return None
+        rgba = self._numbers(color, "rgba", 4, owner)
+        if not all(0.0 <= c <= 1.0 for c in rgba):
+            self._fail(color, "rgba %r must be four numbers from 0 to 1" % color.get("rgba"), owner)
+        return rgba
+
+    def _geometry(self, elem, owner) -> Geometry:
+        geometry = self._child(elem, "geometry", owner)
+        shapes = list(geometry)
+        if len(shapes) != 1:
+            self._fail(geometry, "needs exactly one of <box>, <cylinder>, <sphere>, <mesh>", owner)
+        shape = shapes[0]
+        if shape.tag == "box":
+            size = self._numbers(shape, "size", 3, owner)
+        elif shape.tag == "cylinder":
+            size = (self._number(shape, "radius", owner), self._number(shape, "length", owner))
+        elif shape.tag == "sphere":
+            size = (self._number(shape, "radius", owner),)
+        elif shape.tag == "mesh":
+            filename = self._attr(shape, "filename", owner)
+            scale = self._numbers(shape, "scale", 3, owner) if "scale" in shape.attrib else (1.0,) * 3
+            return Geometry("mesh", scale, filename)
+        else:
+            self._fail(shape, "unknown shape: use <box>, <cylinder>, <sphere> or <mesh>", owner)
+        if min(size) <= 0:
+            self._fail(shape, "sizes must be positive, got %s" % " ".join(map(repr, size)), owner)
+        return Geometry(shape.tag, size)
+
+    def _joint(self, elem, links) -> Joint:
+        name = self._name(elem)
+        owner = "joint %r" % name
+        kind = self._attr(elem, "type", owner)
+        if kind not in JOINT_TYPES:
+            self._fail(elem, "type %r is not one of %s" % (kind, ", ".join(JOINT_TYPES)), owner)
+        ends = []
+        for tag in ("parent", "child"):
+            end = self._child(elem, tag, owner)
+            link = self._attr(end, "link", owner)
+            if link not in links:
+                self._fail(end, "link %r is not defined in this file" % link, owner)
+            ends.append(link)
+        if ends[0] == ends[1]:
+            self._fail(elem, "parent and child are the same link %r" % ends[0], owner)
+        if kind in ("revolute", "prismatic"):
+            self._child(elem, "limit", owner)
+        axis = (1.0, 0.0, 0.0)
+        axis_elem = elem.find("axis")
+        if axis_elem is not None:
+            axis = self._numbers(axis_elem, "xyz", 3, owner)
+            if not any(axis):
+                self._fail(axis_elem, "axis must not be zero", owner)
+        return Joint(name, kind, ends[0], ends[1], self._origin(elem, owner), axis)
+
+    def _origin(self, elem, owner) -> Pose:
+        origin = elem.find("origin")
+        if origin is None:
+            return Pose()
+        xyz = self._numbers(origin, "xyz", 3, owner) if "xyz" in origin.attrib else (0.0,) * 3
+        rpy = self._numbers(origin, "rpy", 3, owner) if "rpy" in origin.attrib else (0.0,) * 3
+        return Pose(xyz, rpy)
+
+    def _numbers(self, elem, key, count, owner) -> tuple:
+        text = self._attr(elem, key, owner)
+        try:
+            values = tuple(float(v) for v in text.split())
+        except ValueError:
+            values = ()
+        if len(values) != count or not all(map(math.isfinite, values)):
+            self._fail(elem, "%s=%r is not %s" % (key, text, "a number" if count == 1
+                                                   else "%d numbers" % count), owner)
+        return values
+
+    def _number(self, elem, key, owner) -> float:
+        return self._numbers(elem, key, 1, owner)[0]
+
+    def _name(self, elem) -> str:
+        return self._attr(elem, "name", None)
+
+    def _attr(self, elem, key, owner) -> str:
+        value = elem.get(key, "").strip()
+        if not value:
+            self._fail(elem, "missing attribute %r" % key, owner)
+        return value
+
+    def _child(self, elem, tag, owner) -> ElementTree.Element:
+        child = elem.find(tag)
+        if child is None:
+            self._fail(elem, "missing <%s>" % tag, owner)
+        return child
+
+    def _fail(self, elem, problem, owner=None) -> NoReturn:
+        name = elem.get("name")
+        where = "%s %r" % (elem.tag, name) if name and elem.tag in NAMED else "<%s>" % elem.tag
+        if owner and owner != where:
+            where = "%s %s" % (owner, where)
+        raise UrdfError("%s:%s: %s: %s" % (self.path, self.lines.get(elem, "?"), where, problem))

@@ -1,0 +1,521 @@
+"""Worlds: the catalogue of this package's SDF worlds and a loader for the SDF subset they use.
+
+No ROS and no pybullet here: a world becomes plain data (``World``, ``Shape``) that
+``world_bullet`` turns into bodies.
+
+The subset: a ``<world>`` (or bare ``<model>`` elements) holding static or dynamic models, nested
+models and links, whose collisions and visuals have a ``box``, ``cylinder``, ``sphere``, ``plane``
+or one extruded ``polyline`` geometry; ``<pose>`` as "x y z roll pitch yaw" (``degrees="true"``
+allowed); visual ``<material>`` colours; ``<include>`` of ``model://sun`` (a light: skipped) and
+``model://ground_plane`` (Gazebo's standard plane). Elements that do not shape the world (physics,
+scene, light, gui, plugin, inertial, sensor, joint, surface ...) are skipped. Anything else that
+would carry geometry (a mesh, a heightmap, any other included model) is an error, never a silent gap.
+
+Units: metres, radians. Poses are in the world frame (z up); angles are SDF's fixed-axis roll,
+pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
+"""
+import math
+import os
+from dataclasses import dataclass, field
+from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
+from xml.parsers import expat
+
+from .errors import WorldError
+
+Pose = Tuple[float, float, float, float, float, float]   # x, y, z (m), roll, pitch, yaw (rad)
+Rgba = Tuple[float, float, float, float]
+Spawn = Tuple[float, float, float]                       # x, y (m), yaw (rad) of base_footprint
+
+IDENTITY: Pose = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+KINDS = ("box", "cylinder", "sphere", "plane", "polyline")
+DEFAULT_RGBA: Rgba = (0.7, 0.7, 0.7, 1.0)   # a visual without material: Gazebo's light grey
+
+# Diffuse colours of the Gazebo/<Name> materials (gazebo.material) these worlds and common ones use.
+GAZEBO_MATERIALS: Dict[str, Rgba] = {
+    "Gazebo/White": (1.0, 1.0, 1.0, 1.0),
+    "Gazebo/Grey": (0.7, 0.7, 0.7, 1.0),
+    "Gazebo/DarkGrey": (0.175, 0.175, 0.175, 1.0),
+    "Gazebo/FlatBlack": (0.1, 0.1, 0.1, 1.0),
+    "Gazebo/Black": (0.0, 0.0, 0.0, 1.0),
+    "Gazebo/Red": (1.0, 0.0, 0.0, 1.0),
+    "Gazebo/Green": (0.0, 1.0, 0.0, 1.0),
+    "Gazebo/Blue": (0.0, 0.0, 1.0, 1.0),
+    "Gazebo/Yellow": (1.0, 1.0, 0.0, 1.0),
+    "Gazebo/Orange": (1.0, 0.5088, 0.0468, 1.0),
+    "Gazebo/Wood": (0.62, 0.45, 0.28, 1.0),   # a texture in Gazebo; its mean colour here
+}
+
+# World elements that carry geometry this loader cannot build.
+_UNSUPPORTED_WORLD = ("actor", "population", "road")
+
+
+@dataclass(frozen=True)
+class Shape:
+    """One collision or visual element, placed in the world.
+
+    The shape's own frame sits at ``pose``: box, cylinder and sphere are centred on it (a cylinder's
+    axis is its z); a plane's surface is its x-y plane with the normal along its z; a polyline is
+    the polygon ``points`` in its x-y plane extruded from z 0 up to its height.
+    """
+
+    name: str                # scoped as in Gazebo: "model::link::element" (nested models add parts)
+    kind: str                # one of KINDS
+    pose: Pose               # world pose of the shape's frame
+    size: Tuple[float, ...]  # box (x, y, z); cylinder (radius, length); sphere (radius,);
+    #                          plane (x, y); polyline (height,)
+    points: Tuple[Tuple[float, float], ...] = ()  # polyline corners (x, y), counter-clockwise
+    rgba: Rgba = DEFAULT_RGBA  # a visual's colour; a collision takes its twin's (else its link's)
+    static: bool = True      # from <static> of the model or of any model around it
+    collision: bool = True   # True: a <collision>; False: a <visual>
+    twin: Optional[str] = None  # the element of the other kind in the same link with the same
+    #                             geometry and pose (a collision's visual, a visual's collision)
+
+
+@dataclass(frozen=True)
+class World:
+    """A loaded world file: its shapes in file order."""
+
+    name: str                   # <world name="...">, or the file's stem for a bare model file
+    path: str
+    models: Tuple[str, ...]     # top-level model names in file order (as /gazebo/model_states)
+    shapes: Tuple[Shape, ...]
+
+    @property
+    def collisions(self) -> Tuple[Shape, ...]:
+        return tuple(s for s in self.shapes if s.collision)
+
+    @property
+    def visuals(self) -> Tuple[Shape, ...]:
+        return tuple(s for s in self.shapes if not s.collision)
+
+    def shape(self, name: str) -> Shape:
+        """The collision called ``name``, else the visual; KeyError if neither exists."""
+        for s in self.collisions + self.visuals:
+            if s.name == name:
+                return s
+        raise KeyError(name)
+
+
+# --- catalogue ----------------------------------------------------------------------------------
+
+class WorldEntry(NamedTuple):
+    """A world this package ships: its file in ``WORLD_DIR`` and where the robot spawns."""
+
+    file: str
+    spawn: Spawn
+
+
+WORLD_DIR = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                          os.pardir, os.pardir, "worlds"))
+
+# The spawn poses of the turtlebot3_gazebo launch files (tb3_facts.md 4.1); the robot faces +x.
+_CATALOGUE = (
+    ("empty", WorldEntry("empty.world", (0.0, 0.0, 0.0))),
+    ("turtlebot3_world", WorldEntry("turtlebot3_world.world", (-2.0, -0.5, 0.0))),
+    ("turtlebot3_house", WorldEntry("turtlebot3_house.world", (-3.0, 1.0, 0.0))),
+    ("turtlebot3_autorace", WorldEntry("turtlebot3_autorace.world", (0.245, -1.787, 0.0))),
+)
+WORLDS: Dict[str, WorldEntry] = {name: entry for name, entry in _CATALOGUE
+                                 if os.path.isfile(os.path.join(WORLD_DIR, entry.file))}
+WORLD_SUFFIXES = (".world", ".sdf")
+
+
+def resolve_world(name_or_path: str) -> Tuple[str, Optional[Spawn]]:
+    """(absolute path, spawn) for a catalogue name or a path to a .world/.sdf file.
+
+    A path to a catalogue file gets that world's spawn; any other path gets None.
+    """
+    if name_or_path in WORLDS:
+        entry = WORLDS[name_or_path]
+        return os.path.join(WORLD_DIR, entry.file), entry.spawn
+    if not name_or_path.endswith(WORLD_SUFFIXES):
+        raise WorldError("unknown world %r: valid worlds are %s, or a path to a %s file"
+                         % (name_or_path, ", ".join(WORLDS), " or ".join(WORLD_SUFFIXES)))
+    path = os.path.abspath(os.path.expanduser(name_or_path))
+    if not os.path.isfile(path):
+        raise WorldError("world file not found: %s" % path)
+    for entry in WORLDS.values():
+        known = os.path.join(WORLD_DIR, entry.file)
+        if os.path.isfile(known) and os.path.samefile(known, path):
+            return path, entry.spawn
+    return path, None
+
+
+# --- XML with line numbers ----------------------------------------------------------------------
+
+@dataclass
+class _Node:
+    tag: str
+    attrib: Dict[str, str]
+    line: int
+    text: str = ""
+    children: List["_Node"] = field(default_factory=list)
+
+    def child(self, tag: str) -> Optional["_Node"]:
+        return next((c for c in self.children if c.tag == tag), None)
+
+    def all(self, tag: str) -> List["_Node"]:
+        return [c for c in self.children if c.tag == tag]
+
+
+def _parse_xml(path: str) -> _Node:
+    """The document's root element; malformed XML raises WorldError naming file and line."""
+    stack: List[_Node] = []
+    roots: List[_Node] = []
+    parser = expat.ParserCreate()
+
+    def start(tag, attrib):
+        node = _Node(tag, attrib, parser.CurrentLineNumber)
+        (stack[-1].children if stack else roots).append(node)
+        stack.append(node)
+
+    def end(_tag):
+        node = stack.pop()
+        node.text = node.text.strip()
+
+    def text(data):
+        if stack:
+            stack[-1].text += data
+
+    parser.StartElementHandler = start
+    parser.EndElementHandler = end
+    parser.CharacterDataHandler = text
+    try:
+        with open(path, "rb") as f:
+            parser.ParseFile(f)
+    except FileNotFoundError:
+        raise WorldError("world file not found: %s" % path) from None
+    except OSError as err:
+        raise WorldError("cannot read world file %s: %s" % (path, err.strerror)) from None
+    except expat.ExpatError as err:
+        raise WorldError("%s:%d: malformed XML: %s"
+                         % (path, err.lineno, expat.ErrorString(err.code))) from None
+    return roots[0]
+
+
+# --- pose algebra (3x3 rotation matrices as nested tuples) --------------------------------------
+
+def _rotation(roll: float, pitch: float, yaw: float):
+    cr, sr = math.cos(roll), math.sin(roll)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+            (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+            (-sp, cp * sr, cp * cr))
+
+
+def _rpy(m) -> Tuple[float, float, float]:
+    cos_pitch = math.hypot(m[0][0], m[1][0])
+    pitch = math.atan2(-m[2][0], cos_pitch) + 0.0      # + 0.0 turns -0.0 into 0.0
+    if cos_pitch < 1e-9:                               # gimbal lock: put the whole turn in yaw
+        return 0.0, pitch, math.atan2(-m[0][1], m[1][1]) + 0.0
+    return math.atan2(m[2][1], m[2][2]) + 0.0, pitch, math.atan2(m[1][0], m[0][0]) + 0.0
+
+
+def _matmul(a, b):
+    return tuple(tuple(sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3))
+                 for i in range(3))
+
+
+def compose(parent: Pose, child: Pose) -> Pose:
+    """The pose ``child`` (given in the ``parent`` frame) expressed in parent's own frame."""
+    r = _rotation(*parent[3:])
+    x, y, z = (parent[i] + sum(r[i][k] * child[k] for k in range(3)) for i in range(3))
+    return (x, y, z) + _rpy(_matmul(r, _rotation(*child[3:])))
+
+
+def _normal_pose(n: Sequence[float]) -> Pose:
+    """A rotation taking +z onto the unit vector ``n`` (the shortest one)."""
+    axis = (-n[1], n[0], 0.0)                    # z x n
+    s, c = math.hypot(axis[0], axis[1]), n[2]
+    if s < 1e-12:
+        return IDENTITY if c > 0 else (0.0, 0.0, 0.0, math.pi, 0.0, 0.0)
+    ux, uy = axis[0] / s, axis[1] / s
+    t = 1.0 - c                                  # Rodrigues with a horizontal unit axis (ux, uy, 0)
+    m = ((c + ux * ux * t, ux * uy * t, uy * s),
+         (ux * uy * t, c + uy * uy * t, -ux * s),
+         (-uy * s, ux * s, c))
+    return (0.0, 0.0, 0.0) + _rpy(m)
+
+
+# --- polygon checks for polylines ---------------------------------------------------------------
+
+def _cross(o, a, b) -> float:
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
+def _segments_cross(p1, p2, q1, q2) -> bool:
+    d1, d2 = _cross(q1, q2, p1), _cross(q1, q2, p2)
+    d3, d4 = _cross(p1, p2, q1), _cross(p1, p2, q2)
+    return d1 * d2 < 0 and d3 * d4 < 0
+
+
+def _clean_polygon(points: List[Tuple[float, float]]) -> Optional[Tuple[Tuple[float, float], ...]]:
+    """Counter-clockwise corners without repeats (a closing repeat of the first included) or
+    straight-through points; None if the polygon is degenerate or crosses itself."""
+    pts = list(points)
+    changed = True
+    while changed and len(pts) >= 3:
+        changed = False
+        for i in range(len(pts)):
+            a, b, c = pts[i - 1], pts[i], pts[(i + 1) % len(pts)]
+            if abs(_cross(a, b, c)) < 1e-12:
+                del pts[i]
+                changed = True
+                break
+    if len(pts) < 3:
+        return None
+    n = len(pts)
+    edges = [(pts[i], pts[(i + 1) % n]) for i in range(n)]
+    for i in range(n):
+        for j in range(i + 2, n):
+            if (j + 1) % n != i and _segments_cross(*edges[i], *edges[j]):
+                return None
+    area = sum(_cross((0.0, 0.0), pts[i - 1], pts[i]) for i in range(n))
+    return tuple(pts if area > 0 else pts[::-1])
+
+
+# --- the loader ---------------------------------------------------------------------------------
+
+class _Loader:
+    """Walks one SDF document; every error names the file and the line of the element at fault."""
+
+    def __init__(self, path: str):
+        self.path = path
+        self.shapes: List[Shape] = []
+
+    def fail(self, node: _Node, problem: str) -> WorldError:
+        return WorldError("%s:%d: %s" % (self.path, node.line, problem))
+
+    # numbers
+
+    def floats(self, node: _Node, count: int) -> Tuple[float, ...]:
+        try:
+            values = tuple(float(v) for v in node.text.split())
+        except ValueError:
+            values = ()
+        if len(values) != count or not all(math.isfinite(v) for v in values):
+            raise self.fail(node, "<%s> needs %d number%s, got %r"
+                            % (node.tag, count, "s" if count > 1 else "", node.text))
+        return values
+
+    def positive(self, parent: _Node, tag: str, count: int, default: Tuple[float, ...]):
+        node = parent.child(tag)
+        if node is None:
+            return default
+        values = self.floats(node, count)
+        if not all(v > 0 for v in values):
+            raise self.fail(node, "<%s> must be positive, got %r" % (tag, node.text))
+        return values
+
+    def flag(self, node: Optional[_Node]) -> bool:
+        if node is None:
+            return False
+        if node.text.lower() in ("true", "1"):
+            return True
+        if node.text.lower() in ("false", "0"):
+            return False
+        raise self.fail(node, "<%s> must be true or false, got %r" % (node.tag, node.text))
+
+    def pose(self, parent: _Node) -> Pose:
+        node = parent.child("pose")
+        if node is None or not node.text:
+            return IDENTITY
+        for frame in ("relative_to", "frame"):
+            if node.attrib.get(frame):
+                raise self.fail(node, "<pose %s=...> is not supported: give poses relative to "
+                                      "the parent element" % frame)
+        if node.attrib.get("rotation_format", "euler_rpy") != "euler_rpy":
+            raise self.fail(node, "<pose rotation_format=...> is not supported: use euler_rpy")
+        x, y, z, roll, pitch, yaw = self.floats(node, 6)
+        if node.attrib.get("degrees", "false").lower() in ("true", "1"):
+            roll, pitch, yaw = (math.radians(a) for a in (roll, pitch, yaw))
+        return (x, y, z, roll, pitch, yaw)
+
+    # structure
+
+    def document(self, root: _Node) -> World:
+        if root.tag != "sdf":
+            raise self.fail(root, "not an SDF file: the root element is <%s>, not <sdf>" % root.tag)
+        world = root.child("world")
+        if world is None:
+            if not root.all("model"):
+                raise self.fail(root, "no <world> or <model> in this file")
+            world, name = root, os.path.splitext(os.path.basename(self.path))[0]
+        else:
+            name = world.attrib.get("name", "default")
+        models = []
+        for node in world.children:
+            if node.tag == "model":
+                models.append(self.model(node, IDENTITY, "", False))
+            elif node.tag == "include":
+                models.extend(self.include(node, IDENTITY, ""))
+            elif node.tag in _UNSUPPORTED_WORLD:
+                raise self.fail(node, "<%s> is not supported: build it from models" % node.tag)
+        return World(name, self.path, tuple(models), tuple(self.shapes))
+
+    def include(self, node: _Node, parent: Pose, scope: str) -> List[str]:
+        """The model names an <include> adds: model://ground_plane is built in, model://sun is
+        a light (nothing to add); other models must be written into the file."""
+        uri_node = node.child("uri")
+        uri = uri_node.text if uri_node is not None else ""
+        if uri.rstrip("/") == "model://sun":
+            return []
+        if uri.rstrip("/") != "model://ground_plane":
+            raise self.fail(node, "<include> of %r is not supported: write the model into the "
+                                  "file with primitive shapes" % uri)
+        name_node = node.child("name")
+        name = name_node.text if name_node is not None else "ground_plane"
+        pose = compose(parent, self.pose(node))
+        scoped = scope + name + "::link::"
+        grey = GAZEBO_MATERIALS["Gazebo/Grey"]
+        size = (100.0, 100.0)
+        self.shapes.append(Shape(scoped + "collision", "plane", pose, size, rgba=grey,
+                                 twin=scoped + "visual"))
+        self.shapes.append(Shape(scoped + "visual", "plane", pose, size, rgba=grey,
+                                 collision=False, twin=scoped + "collision"))
+        return [name]
+
+    def model(self, node: _Node, parent: Pose, scope: str, parent_static: bool) -> str:
+        name = self.name(node)
+        pose = compose(parent, self.pose(node))
+        static = parent_static or self.flag(node.child("static"))
+        scope += name + "::"
+        for child in node.children:
+            if child.tag == "link":
+                self.link(child, pose, scope, static)
+            elif child.tag == "model":
+                self.model(child, pose, scope, static)
+            elif child.tag == "include":
+                self.include(child, pose, scope)
+        return name
+
+    def name(self, node: _Node) -> str:
+        name = node.attrib.get("name", "")
+        if not name:
+            raise self.fail(node, "<%s> needs a name attribute" % node.tag)
+        return name
+
+    def link(self, node: _Node, parent: Pose, scope: str, static: bool) -> None:
+        pose = compose(parent, self.pose(node))
+        scope += self.name(node) + "::"
+        shapes = []
+        for child in node.children:
+            if child.tag in ("collision", "visual"):
+                shape = self.element(child, pose, scope, static)
+                if shape is not None:
+                    shapes.append(shape)
+        self.shapes.extend(self.pair_twins(shapes))
+
+    def element(self, node: _Node, parent: Pose, scope: str, static: bool) -> Optional[Shape]:
+        """A collision or visual as a Shape; None for an empty geometry."""
+        name = scope + self.name(node)
+        geometry = node.child("geometry")
+        if geometry is None or not geometry.children or geometry.children[0].tag == "empty":
+            return None
+        if len(geometry.children) > 1:
+            raise self.fail(geometry.children[1], "<geometry> of %s holds more than one shape "
+                                                  "(one <polyline> at most)" % name)
+        geo = geometry.children[0]
+        pose = compose(parent, self.pose(node))
+        points: Tuple[Tuple[float, float], ...] = ()
+        if geo.tag == "box":
+            size = self.positive(geo, "size", 3, (1.0, 1.0, 1.0))
+        elif geo.tag == "cylinder":
+            size = (self.positive(geo, "radius", 1, (1.0,))[0],
+                    self.positive(geo, "length", 1, (1.0,))[0])
+        elif geo.tag == "sphere":
+            size = self.positive(geo, "radius", 1, (1.0,))
+        elif geo.tag == "plane":
+            size = self.positive(geo, "size", 2, (1.0, 1.0))
+            normal_node = geo.child("normal")
+            normal = self.floats(normal_node, 3) if normal_node is not None else (0.0, 0.0, 1.0)
+            length = math.sqrt(sum(v * v for v in normal))
+            if length == 0:
+                raise self.fail(normal_node, "<normal> must not be zero")
+            pose = compose(pose, _normal_pose([v / length for v in normal]))
+        elif geo.tag == "polyline":
+            size = self.positive(geo, "height", 1, (1.0,))
+            points = self.polygon(geo)
+        else:
+            raise self.fail(geo, "unsupported geometry <%s> in %s (supported: %s)"
+                            % (geo.tag, name, ", ".join(KINDS)))
+        collision = node.tag == "collision"
+        rgba = DEFAULT_RGBA if collision else self.colour(node.child("material"))
+        return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision)
+
+    def polygon(self, polyline: _Node) -> Tuple[Tuple[float, float], ...]:
+        points = [self.floats(p, 2) for p in polyline.all("point")]
+        cleaned = _clean_polygon([(x, y) for x, y in points])
+        if cleaned is None:
+            raise self.fail(polyline, "<polyline> must be a simple polygon of at least 3 corners "
+                                      "(not crossing itself)")
+        return cleaned
+
+    def colour(self, material: Optional[_Node]) -> Rgba:
+        """Explicit <diffuse>, else <ambient>, else a known Gazebo script name, else grey."""
+        if material is None:
+            return DEFAULT_RGBA
+        for tag in ("diffuse", "ambient"):
+            node = material.child(tag)
+            if node is not None:
+                values = node.text.split()
+                rgba = self.floats(node, 4 if len(values) == 4 else 3)
+                if not all(0.0 <= v <= 1.0 for v in rgba):
+                    raise self.fail(node, "<%s> values must lie in 0..1, got %r" % (tag, node.text))
+                return tuple(rgba) + (1.0,) * (4 - len(rgba))
+        script = material.child("script")
+        script_name = script.child("name") if script is not None else None
+        if script_name is not None:
+            return GAZEBO_MATERIALS.get(script_name.text, DEFAULT_RGBA)
+        return DEFAULT_RGBA
+
+    def pair_twins(self, shapes: List[Shape]) -> List[Shape]:
+        """Link each collision to the visual with the same geometry and pose, and colour it:
+        by its twin, else by the link's first visual."""
+        visuals = [s for s in shapes if not s.collision]
+        taken = set()
+        twins: Dict[str, str] = {}
+        for c in (s for s in shapes if s.collision):
+            for v in visuals:
+                if v.name not in taken and _same_geometry(c, v):
+                    twins[c.name], twins[v.name] = v.name, c.name
+                    taken.add(v.name)
+                    break
+        by_name = {v.name: v for v in visuals}
+        out = []
+        for s in shapes:
+            twin = twins.get(s.name)
+            if s.collision:
+                source = by_name.get(twin) if twin else (visuals[0] if visuals else None)
+                rgba = source.rgba if source else DEFAULT_RGBA
+                s = Shape(s.name, s.kind, s.pose, s.size, s.points, rgba, s.static, True, twin)
+            elif twin:
+                s = Shape(s.name, s.kind, s.pose, s.size, s.points, s.rgba, s.static, False, twin)
+            out.append(s)
+        return out
+
+
+def _same_geometry(a: Shape, b: Shape, tol: float = 1e-9) -> bool:
+    return (a.kind == b.kind and len(a.points) == len(b.points)
+            and all(abs(u - v) <= tol for u, v in zip(a.size + a.pose, b.size + b.pose))
+            and all(abs(u - v) <= tol for p, q in zip(a.points, b.points) for u, v in zip(p, q)))
+
+
+def _check_names(world: World) -> None:
+    seen: Dict[str, Shape] = {}
+    for s in world.shapes:
+        other = seen.get(s.name)
+        if other is not None and other.twin != s.name:
+            kind = "collision" if s.collision else "visual"
+            raise WorldError("%s: two elements are named %s (the second a %s): names must be "
+                             "unique within a link" % (world.path, s.name, kind))
+        seen[s.name] = s
+
+
+def load_world(path: str) -> World:
+    """Parse the SDF file at ``path``; WorldError (one line: file, line, fault) if it cannot."""
+    loader = _Loader(path)
+    world = loader.document(_parse_xml(path))
+    _check_names(world)
+    return world
