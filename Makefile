@@ -14,7 +14,7 @@ setup:
 	@bash tools/setup.sh
 
 demo: setup
-	@$(ROS_ENV) && roslaunch tutorial_turtlebot demo.launch model:=$(MODEL)
+	@$(ROS_ENV) && roslaunch tutorial_turtlebot sim_teleop.launch model:=$(MODEL)
 
 test: setup
 	@$(ROS_ENV) && bash tools/run_tests.sh

@@ -6,18 +6,44 @@ centre of mass, so every pose here is converted to and from ``base_footprint``.
 Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
 import contextlib
+import ctypes
 import os
 import tempfile
 from typing import Dict, Sequence, Tuple
 from xml.etree import ElementTree
 
 import numpy as np
-import pybullet
 
-from .robot_models import ModelSpec
-from .urdf_file import RobotDescription
-from .world_bullet import WORLD_COLLISION_GROUP, build_world
-from .world_sdf import World
+_LIBC = ctypes.CDLL(None)
+
+
+@contextlib.contextmanager
+def _quiet_output():
+    """Silence what pybullet's C++ code prints straight to file descriptors 1 and 2 (its build
+    date, the URDF importer's notes); Python's own output is unaffected afterwards."""
+    saved = []
+    try:
+        with open(os.devnull, "w") as null:
+            for fd in (1, 2):
+                saved.append((fd, os.dup(fd)))
+                os.dup2(null.fileno(), fd)
+            yield
+    finally:
+        _LIBC.fflush(None)  # what C buffered goes to /dev/null too
+        for fd, copy in saved:
+            os.dup2(copy, fd)
+            os.close(copy)
+
+
+with _quiet_output():  # pybullet prints its build date on import
+    import pybullet
+
+
+from .robot_models import ModelSpec  # noqa: E402  (after pybullet's quiet import)
+from .urdf_file import RobotDescription  # noqa: E402
+from .world_bullet import WORLD_COLLISION_GROUP, build_world  # noqa: E402
+from .world_sdf import World  # noqa: E402
+
 
 Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]
 
@@ -27,23 +53,6 @@ WHEEL_JOINTS = ("wheel_left_joint", "wheel_right_joint")
 WHEEL_FRICTION = 1.0             # tyre on floor (pybullet multiplies the two surfaces' values)
 BODY_FRICTION = 0.0              # chassis and caster skids slide freely
 SPAWN_CLEARANCE = 0.001          # m: drop the robot from just above the floor
-
-
-@contextlib.contextmanager
-def _quiet_stdout():
-    """Silence what pybullet's C++ loaders print straight to file descriptor 1."""
-    try:
-        saved = os.dup(1)
-    except OSError:
-        yield
-        return
-    with open(os.devnull, "w") as null:
-        os.dup2(null.fileno(), 1)
-        try:
-            yield
-        finally:
-            os.dup2(saved, 1)
-            os.close(saved)
 
 
 def _urdf_for_bullet(path: str) -> str:
@@ -99,7 +108,7 @@ class TurtleBotPhysics:
         cid = self.client
         tmp = _urdf_for_bullet(path)
         try:
-            with _quiet_stdout():
+            with _quiet_output():
                 robot = pybullet.loadURDF(
                     tmp, flags=pybullet.URDF_MERGE_FIXED_LINKS | pybullet.URDF_USE_INERTIA_FROM_FILE,
                     physicsClientId=cid)

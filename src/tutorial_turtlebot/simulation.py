@@ -24,6 +24,9 @@ from .world_sdf import load_world, resolve_world
 
 ODOM_SOURCES = ("world", "encoders")
 CONTROL_RATE = 30.0  # Hz: the Gazebo diff-drive plugin's updateRate (ramp, odom, joint states)
+# s: low-pass time constant of the IMU's acceleration, like the MPU-9250's digital low-pass
+# filter; without it the wheel and caster contacts' chatter reads as +-2 m/s^2 noise.
+IMU_ACCEL_TIME_CONSTANT = 0.02
 
 
 @dataclass
@@ -223,7 +226,9 @@ class Simulation:
         lin, _ = self.physics.velocity()
         last_lin, last_ns = self._imu_velocity
         if self.time_ns > last_ns:
-            self._imu_accel = (lin - last_lin) * (NS_PER_S / (self.time_ns - last_ns))
+            dt = (self.time_ns - last_ns) / NS_PER_S
+            raw = (lin - last_lin) / dt
+            self._imu_accel += (raw - self._imu_accel) * (dt / (IMU_ACCEL_TIME_CONSTANT + dt))
         self._imu_velocity = (lin, self.time_ns)
 
     def _update_encoders(self) -> None:

@@ -15,9 +15,10 @@ from xml.parsers import expat
 import numpy as np
 
 from .errors import UrdfError
+from .package_data import data_dir
 from .robot_models import get_model
 
-URDF_DIR = Path(__file__).resolve().parents[2] / "urdf"
+URDF_DIR = Path(data_dir("urdf"))
 NAMED = ("robot", "link", "joint", "material")  # elements that errors call by name
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic", "floating", "planar")
 Vector3 = Tuple[float, float, float]

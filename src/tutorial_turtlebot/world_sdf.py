@@ -21,6 +21,7 @@ from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 from xml.parsers import expat
 
 from .errors import WorldError
+from .package_data import data_dir
 
 Pose = Tuple[float, float, float, float, float, float]   # x, y, z (m), roll, pitch, yaw (rad)
 Rgba = Tuple[float, float, float, float]
@@ -105,8 +106,7 @@ class WorldEntry(NamedTuple):
     spawn: Spawn
 
 
-WORLD_DIR = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
-                                          os.pardir, os.pardir, "worlds"))
+WORLD_DIR = data_dir("worlds")
 
 # The spawn poses of the turtlebot3_gazebo launch files (tb3_facts.md 4.1); the robot faces +x.
 _CATALOGUE = (
