@@ -50,7 +50,10 @@ Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]
 GRAVITY = 9.8                    # m/s^2, Gazebo's default
 ROBOT_COLLISION_GROUP = 2        # rays test the world only, never the robot itself
 WHEEL_JOINTS = ("wheel_left_joint", "wheel_right_joint")
-WHEEL_FRICTION = 1.0             # tyre on floor (pybullet multiplies the two surfaces' values)
+# Tyre on floor (pybullet multiplies the two surfaces' values; the floor's is 1): enough grip
+# for the 1 m/s^2 ramp with margin, little enough that a robot pushing a wall spins its wheels
+# instead of climbing it (at 1.0 a Burger pressed into a corner reared up by 0.37 rad).
+WHEEL_FRICTION = 0.5
 BODY_FRICTION = 0.0              # chassis and caster skids slide freely
 SPAWN_CLEARANCE = 0.001          # m: drop the robot from just above the floor
 
@@ -110,7 +113,8 @@ class TurtleBotPhysics:
         try:
             with _quiet_output():
                 robot = pybullet.loadURDF(
-                    tmp, flags=pybullet.URDF_MERGE_FIXED_LINKS | pybullet.URDF_USE_INERTIA_FROM_FILE,
+                    tmp, flags=(pybullet.URDF_MERGE_FIXED_LINKS | pybullet.URDF_USE_INERTIA_FROM_FILE
+                           | pybullet.URDF_USE_IMPLICIT_CYLINDER),
                     physicsClientId=cid)
         finally:
             os.unlink(tmp)

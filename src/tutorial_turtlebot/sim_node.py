@@ -5,7 +5,7 @@ It owns the clock: physics runs at ``~max_step_size`` of sim time per step, pace
 ``/use_sim_time``. Every message of one step carries that step's sim time as its stamp.
 
 Publications (relative names resolve in the node's namespace, as Gazebo's plugins do):
-  /clock (rosgraph_msgs/Clock)          >= ~clock_rate Hz, and before every stamped message
+  /clock (rosgraph_msgs/Clock)          ~clock_rate Hz (100)
   odom (nav_msgs/Odometry)              30 Hz, odom -> base_footprint
   /tf (tf2_msgs/TFMessage)              30 Hz, odom -> base_footprint
   joint_states (sensor_msgs/JointState) 30 Hz, wheel_left_joint, wheel_right_joint (rad, rad/s)
@@ -42,11 +42,13 @@ import threading
 import time
 
 import rospy
+import rospy.impl.simtime
 import tf2_ros
 from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState, LaserScan
+from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
 from .errors import UserError
@@ -124,8 +126,9 @@ class SimNode:
             "imu": rospy.Publisher("imu", Imu, queue_size=1),
         }
         self.tf = tf2_ros.TransformBroadcaster()
-        self.publishers = {"odom": self._publish_odom, "joint_states": self._publish_joints,
-                           "scan": self._publish_scan, "imu": self._publish_imu}
+        self.publishers = {"clock": self._publish_clock, "odom": self._publish_odom,
+                           "joint_states": self._publish_joints, "scan": self._publish_scan,
+                           "imu": self._publish_imu}
         rospy.Subscriber("cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
         for name, action in (("reset_simulation", sim.reset_simulation),
                              ("reset_world", sim.reset_world),
@@ -209,22 +212,20 @@ class SimNode:
         self.pubs["imu"].publish(msg)
 
     def _publish_due(self, due) -> None:
-        """Publish what is due at this step: /clock first, so no stamp is ever ahead of it."""
-        stamp = rospy.Time(*divmod(self.sim.time_ns, 1_000_000_000))
-        if due != ["clock"] and not any(self._wanted(name) for name in due if name != "clock"):
-            due = [name for name in due if name == "clock"]
+        """Publish what is due at this step, all with this step's stamp. /clock runs on its own
+        fixed rate; a stamp may be ahead of it by less than one clock period, never behind, so
+        tf lookups at the current time never need to extrapolate."""
         if not due:
             return
+        stamp = rospy.Time(*divmod(self.sim.time_ns, 1_000_000_000))
+        for name in due:
+            self.publishers[name](stamp)
+
+    def _publish_clock(self, stamp) -> None:
         self.clock_msg.clock = stamp
         self.pubs["clock"].publish(self.clock_msg)
-        for name in due:
-            if name != "clock":
-                self.publishers[name](stamp)
-
-    def _wanted(self, name) -> bool:
-        if name == "odom" and self.tf.pub_tf.get_num_connections() > 0:
-            return True
-        return self.pubs[name].get_num_connections() > 0
+        # The sim's own rospy time follows its clock directly (see main: no /clock round trip).
+        _set_rostime(stamp)
 
     # --- input -----------------------------------------------------------------------------------
 
@@ -304,9 +305,20 @@ class SimNode:
                       yaw_from_quat(orn), " (paused)" if self.paused else "")
 
 
+def _own_the_clock() -> None:
+    """The sim is the clock: under /use_sim_time rospy would subscribe this node to /clock and
+    deserialize every message it publishes itself; instead its rospy time is set directly in
+    _publish_clock. (rospy.impl.simtime keeps that subscription as ``_clock_sub``.)"""
+    subscription = getattr(rospy.impl.simtime, "_clock_sub", None)
+    if subscription is not None:
+        subscription.unregister()
+        rospy.impl.simtime._clock_sub = None
+
+
 def main() -> None:
     """Entry point of ``scripts/sim``."""
     rospy.init_node("gazebo", disable_signals=False)
+    _own_the_clock()
     try:
         config = read_config()
         real_time_factor = _param("real_time_factor", 1.0, float)

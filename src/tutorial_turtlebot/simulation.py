@@ -17,6 +17,7 @@ from .errors import UserError
 from .lidar import LaserConfig, laser_config, ranges_from_distances, ray_directions
 from .physics import GRAVITY, TurtleBotPhysics
 from .robot_models import get_model
+from .spawn_check import check_spawn, footprint_radius
 from .schedule import NS_PER_S, RateSchedule, seconds_to_ns
 from .urdf_file import read_urdf, urdf_path
 from .wheel_odometry import WheelOdometry
@@ -107,6 +108,8 @@ class Simulation:
         self.world = load_world(world_path)
         spawn = self._spawn(world_spawn)
         self.description = read_urdf(urdf_path(config.model, config.camera))
+        check_spawn(self.world, spawn[0], spawn[1], footprint_radius(self.description),
+                    z=spawn[2])
         self.physics = TurtleBotPhysics(self.spec, self.description, self.world, spawn,
                                         config.time_step, config.solver_iterations,
                                         config.gui)

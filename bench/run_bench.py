@@ -1,0 +1,227 @@
+#!/usr/bin/env python3
+"""``make bench``: launch the real sim with roslaunch and measure it; print one table.
+
+Each figure is the median of ``--runs`` runs (default 3). Run from a shell where
+``source .catkin_ws/devel/setup.bash`` was done (make bench does it). Every run starts its own
+master on a free port, so nothing else on the machine is disturbed.
+
+Measured (Burger in turtlebot3_world unless said):
+  start-up          roslaunch sim.launch (roscore included) -> first /scan, wall s
+  real time         real_time_factor 1, every sensor subscribed from another process:
+                    achieved factor, sim CPU (% of one core), sim memory (RSS, MB)
+  fast              real_time_factor 0, every sensor subscribed / only /odom: achieved factor
+  physics bound     the same world and robot stepped by pybullet with no ROS (and no sensors)
+  scaling           real_time_factor 0, 1 / 4 / 8 subscribers to /scan: achieved factor
+"""
+import argparse
+import os
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, os.pardir, "src"))
+
+ALL_SENSORS = ["/scan", "/odom", "/imu", "/joint_states", "/tf"]
+TARGETS = {
+    "startup": "<= 2 s",
+    "rt_cpu": "<= 10 %",
+    "rt_mem": "<= 200 MB",
+    "fast_all": ">= 20x",
+}
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        return s.getsockname()[1]
+
+
+class SimRun:
+    """One roslaunch of sim.launch on its own master, plus helper processes."""
+
+    def __init__(self, launch_args, model="burger", world="turtlebot3_world"):
+        self.port = free_port()
+        self.env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % self.port)
+        self.args = ["model:=%s" % model, "world:=%s" % world, "status_period:=0"] + launch_args
+        self.procs = []
+        self.launch = None
+
+    def start_helper(self, script, *args):
+        proc = subprocess.Popen([sys.executable, os.path.join(HERE, script)] + list(args),
+                                env=self.env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                text=True, start_new_session=True)
+        self.procs.append(proc)
+        return proc
+
+    def start(self):
+        self.launch = subprocess.Popen(
+            ["roslaunch", "-p", str(self.port), "tutorial_turtlebot", "sim.launch"] + self.args,
+            env=self.env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+            start_new_session=True)
+        self.procs.append(self.launch)
+
+    def sim_pid(self, timeout=30.0):
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            for pid in os.listdir("/proc"):
+                if not pid.isdigit():
+                    continue
+                try:
+                    with open("/proc/%s/cmdline" % pid, "rb") as f:
+                        cmd = f.read().split(b"\0")
+                    with open("/proc/%s/environ" % pid, "rb") as f:
+                        env = f.read().split(b"\0")
+                except OSError:
+                    continue
+                master = [e for e in env if e.startswith(b"ROS_MASTER_URI=")]
+                if (b"__name:=gazebo" in cmd and master
+                        and master[0].rstrip(b"/").endswith(b":%d" % self.port)):
+                    return int(pid)
+            time.sleep(0.2)
+        raise RuntimeError("sim process not found")
+
+    def stop(self):
+        for proc in reversed(self.procs):
+            if proc.poll() is None:
+                try:
+                    os.killpg(proc.pid, signal.SIGINT)
+                except ProcessLookupError:
+                    pass
+        for proc in reversed(self.procs):
+            try:
+                proc.wait(15)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+
+
+def cpu_seconds(pid) -> float:
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def rss_mb(pid) -> float:
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024.0
+    return float("nan")
+
+
+def read_report(proc):
+    """Next 'wall sim messages' line of a subscribers.py process (other lines skipped)."""
+    for line in proc.stdout:
+        fields = line.split()
+        if len(fields) == 3:
+            try:
+                return float(fields[0]), float(fields[1]), int(fields[2])
+            except ValueError:
+                continue
+    raise RuntimeError("subscriber process ended")
+
+
+def measure_startup() -> float:
+    run = SimRun([])
+    try:
+        probe = run.start_helper("first_scan.py")
+        time.sleep(1.5)  # its imports are done; it now waits for the master
+        t0 = time.time()
+        run.start()
+        for line in probe.stdout:  # rospy may first say it is waiting for the master
+            try:
+                return float(line) - t0
+            except ValueError:
+                continue
+        raise RuntimeError("no /scan arrived")
+    finally:
+        run.stop()
+
+
+def measure_running(rtf, topics, seconds=8.0, warmup=3.0):
+    """(achieved factor, sim CPU % of one core, sim RSS MB) with ``topics`` subscribed."""
+    run = SimRun(["real_time_factor:=%g" % rtf])
+    try:
+        run.start()
+        subs = run.start_helper("subscribers.py", *topics)
+        pid = run.sim_pid()
+        # wait until the clock runs and the subscribers are connected
+        deadline = time.time() + 60
+        while read_report(subs)[1] <= 0.0 and time.time() < deadline:
+            pass
+        end_warmup = time.time() + warmup
+        while time.time() < end_warmup:
+            read_report(subs)
+        wall0, sim0, _ = read_report(subs)
+        cpu0 = cpu_seconds(pid)
+        samples = int(seconds)
+        for _ in range(samples):
+            wall1, sim1, _ = read_report(subs)
+        cpu1 = cpu_seconds(pid)
+        mem = rss_mb(pid)
+        return (sim1 - sim0) / (wall1 - wall0), 100.0 * (cpu1 - cpu0) / (wall1 - wall0), mem
+    finally:
+        run.stop()
+
+
+def physics_bound(seconds=20.0) -> float:
+    """Real-time factor of the Simulation stepped with no ROS and no sensors."""
+    from tutorial_turtlebot.simulation import SimConfig, Simulation
+    sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
+    try:
+        sim.command(0.1, 0.2)
+        steps = int(seconds / sim.config.time_step)
+        t0 = time.perf_counter()
+        for _ in range(steps):
+            sim.physics.step()
+        return seconds / (time.perf_counter() - t0)
+    finally:
+        sim.close()
+
+
+def median(values):
+    return statistics.median(values)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=3, help="runs per figure (median)")
+    args = parser.parse_args()
+    rows = []
+
+    def row(name, value, unit, target=""):
+        rows.append((name, value, unit, target))
+        print("  %-58s %10s %-8s %s" % (name, value, unit, target), flush=True)
+
+    print("tutorial_turtlebot benchmark: %d runs each, median; %s, %d cores"
+          % (args.runs, os.uname().nodename, os.cpu_count()), flush=True)
+    row("start-up: roslaunch (with roscore) -> first /scan",
+        "%.2f" % median([measure_startup() for _ in range(args.runs)]), "s", TARGETS["startup"])
+    rt = [measure_running(1.0, ALL_SENSORS) for _ in range(args.runs)]
+    row("real time, every sensor subscribed: achieved factor",
+        "%.2f" % median([r[0] for r in rt]), "x")
+    row("real time, every sensor subscribed: sim CPU",
+        "%.1f" % median([r[1] for r in rt]), "% core", TARGETS["rt_cpu"])
+    row("real time, every sensor subscribed: sim memory (RSS)",
+        "%.0f" % median([r[2] for r in rt]), "MB", TARGETS["rt_mem"])
+    row("as fast as possible, every sensor subscribed",
+        "%.1f" % median([measure_running(0, ALL_SENSORS)[0] for _ in range(args.runs)]), "x",
+        TARGETS["fast_all"])
+    fast_odom = median([measure_running(0, ["/odom"])[0] for _ in range(args.runs)])
+    row("as fast as possible, only /odom subscribed", "%.1f" % fast_odom, "x")
+    bound = median([physics_bound() for _ in range(args.runs)])
+    row("physics bound: pybullet alone, no ROS, no sensors", "%.1f" % bound, "x")
+    row("  fast (only /odom) / physics bound", "%.2f" % (fast_odom / bound), "")
+    for n in (1, 4, 8):
+        row("as fast as possible, %d subscriber(s) to /scan" % n,
+            "%.1f" % median([measure_running(0, ["/scan:%d" % n])[0]
+                             for _ in range(args.runs)]), "x")
+    print("cameras: not simulated yet (issue 3)", flush=True)
+
+
+if __name__ == "__main__":
+    main()

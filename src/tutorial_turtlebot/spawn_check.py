@@ -1,0 +1,199 @@
+"""Refuse a spawn pose that puts the robot inside an obstacle. Knows nothing of ROS or pybullet.
+
+The robot is taken as an upright cylinder about its spawn point: ``footprint_radius`` wide, from
+``FLOOR_CLEARANCE`` above the floor up to ``height``. A world's collision shapes (``world_sdf``)
+that overlap that cylinder are obstacles; planes are floors and never are. Shapes whose axis
+stands upright (every shape of this package's worlds) are measured exactly in plan; a tilted one
+is measured at a few heights of the cylinder's axis (close, not exact).
+
+Units: metres, in the world frame (z up), as in world_sdf.
+"""
+import math
+import os
+from typing import Iterable, Optional, Sequence, Tuple
+
+import numpy as np
+
+from .errors import WorldError
+from .world_sdf import Shape, World
+
+FLOOR_CLEARANCE = 0.01   # m: shapes entirely below this are floor coverings the robot drives on
+DEFAULT_HEIGHT = 0.2     # m: the top of the robot (burger 0.192, waffle 0.141, above the floor)
+TILTED_SAMPLES = 21      # heights at which a tilted shape is measured
+
+Point = Tuple[float, float]
+
+
+def check_spawn(world: World, x: float, y: float, footprint_radius: float, z: float = 0.0,
+                height: float = DEFAULT_HEIGHT) -> None:
+    """Raise WorldError (one line naming the pose and the obstacle) if a robot of
+    ``footprint_radius`` (m) spawned with base_footprint at (x, y, z) would stand inside or
+    overlap one of ``world``'s collision shapes; return None if it stands clear."""
+    hit = find_obstacle(world, x, y, footprint_radius, z, height)
+    if hit is None:
+        return
+    shape, distance = hit
+    where = "spawn (%s, %s)" % (_number(x), _number(y))
+    world_file = os.path.basename(world.path)
+    if distance <= 0.0:
+        raise WorldError("%s is inside %s (%s): choose another x_pos, y_pos"
+                         % (where, shape.name, world_file))
+    raise WorldError("%s is %.3f m from %s (%s): a robot of footprint radius %.3f m would stand "
+                     "in it: choose another x_pos, y_pos"
+                     % (where, distance, shape.name, world_file, footprint_radius))
+
+
+def find_obstacle(world: World, x: float, y: float, footprint_radius: float, z: float = 0.0,
+                  height: float = DEFAULT_HEIGHT) -> Optional[Tuple[Shape, float]]:
+    """The nearest collision shape within ``footprint_radius`` of (x, y) in plan, over the
+    heights z + FLOOR_CLEARANCE .. z + height, with its distance (m; <= 0 when (x, y) is inside
+    it); None if there is none."""
+    if not footprint_radius >= 0.0 or not height > FLOOR_CLEARANCE:
+        raise ValueError("footprint_radius must be >= 0 and height > %g m" % FLOOR_CLEARANCE)
+    band = (z + FLOOR_CLEARANCE, z + height)
+    best = None
+    for shape in world.collisions:
+        if shape.kind == "plane":
+            continue
+        distance = plan_distance(shape, x, y, band)
+        if distance is not None and distance < footprint_radius:
+            if best is None or distance < best[1]:
+                best = (shape, distance)
+    return best
+
+
+def plan_distance(shape: Shape, x: float, y: float, band: Tuple[float, float]) -> Optional[float]:
+    """Horizontal distance (m) from the vertical line through (x, y) to ``shape`` within the
+    heights ``band`` (negative inside it); None if the shape lies wholly above or below."""
+    rotation = _rotation(*shape.pose[3:])
+    centre = np.array(shape.pose[:3])
+    axis_z = rotation[2, 2]
+    if abs(abs(axis_z) - 1.0) > 1e-9:
+        return _sampled_distance(shape, rotation, centre, x, y, band)
+    low, high = _local_z_range(shape)
+    z0, z1 = sorted((centre[2] + axis_z * low, centre[2] + axis_z * high))
+    if z1 <= band[0] or z0 >= band[1]:
+        return None
+    local = rotation.T @ (np.array((x, y, centre[2])) - centre)
+    lx, ly = float(local[0]), float(local[1])
+    if shape.kind == "box":
+        return _rectangle_distance(lx, ly, shape.size[0] / 2, shape.size[1] / 2)
+    if shape.kind == "cylinder":
+        return math.hypot(lx, ly) - shape.size[0]
+    if shape.kind == "sphere":
+        nearest = min(max(centre[2], band[0]), band[1])          # the widest slice in the band
+        radius = math.sqrt(max(shape.size[0] ** 2 - (nearest - centre[2]) ** 2, 0.0))
+        return math.hypot(lx, ly) - radius
+    return _polygon_distance(lx, ly, shape.points)
+
+
+def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """SDF's fixed-axis roll, pitch, yaw as a 3x3 matrix: Rz(yaw) Ry(pitch) Rx(roll)."""
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return np.array(((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+                     (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+                     (-sp, cp * sr, cp * cr)))
+
+
+def _local_z_range(shape: Shape) -> Tuple[float, float]:
+    if shape.kind == "box":
+        return -shape.size[2] / 2, shape.size[2] / 2
+    if shape.kind == "cylinder":
+        return -shape.size[1] / 2, shape.size[1] / 2
+    if shape.kind == "sphere":
+        return -shape.size[0], shape.size[0]
+    return 0.0, shape.size[0]                                   # polyline: extruded up from 0
+
+
+def _sampled_distance(shape: Shape, rotation, centre, x: float, y: float,
+                      band: Tuple[float, float]) -> float:
+    """A tilted shape: the least 3D distance from points along the vertical segment at (x, y)
+    within ``band`` to the shape (negative inside)."""
+    best = math.inf
+    for z in np.linspace(band[0], band[1], TILTED_SAMPLES):
+        local = rotation.T @ (np.array((x, y, z)) - centre)
+        best = min(best, _point_distance(shape, *(float(v) for v in local)))
+    return best
+
+
+def _point_distance(shape: Shape, lx: float, ly: float, lz: float) -> float:
+    """Signed 3D distance from a point (in the shape's frame) to the shape."""
+    if shape.kind == "box":
+        half = np.array(shape.size) / 2
+        q = np.abs((lx, ly, lz)) - half
+        return float(np.linalg.norm(np.maximum(q, 0.0)) + min(q.max(), 0.0))
+    if shape.kind == "cylinder":
+        radial = math.hypot(lx, ly) - shape.size[0]
+        axial = abs(lz) - shape.size[1] / 2
+        return math.hypot(max(radial, 0.0), max(axial, 0.0)) + min(max(radial, axial), 0.0)
+    if shape.kind == "sphere":
+        return math.sqrt(lx * lx + ly * ly + lz * lz) - shape.size[0]
+    plan = _polygon_distance(lx, ly, shape.points)             # polyline prism, z 0..height
+    vertical = max(-lz, lz - shape.size[0])
+    return math.hypot(max(plan, 0.0), max(vertical, 0.0)) + min(max(plan, vertical), 0.0)
+
+
+def _rectangle_distance(px: float, py: float, half_x: float, half_y: float) -> float:
+    qx, qy = abs(px) - half_x, abs(py) - half_y
+    return math.hypot(max(qx, 0.0), max(qy, 0.0)) + min(max(qx, qy), 0.0)
+
+
+def _polygon_distance(px: float, py: float, points: Sequence[Point]) -> float:
+    """Signed distance to a simple polygon: negative inside."""
+    distance = min(_segment_distance(px, py, a, b) for a, b in _edges(points))
+    return -distance if _inside(px, py, points) else distance
+
+
+def _edges(points: Sequence[Point]) -> Iterable[Tuple[Point, Point]]:
+    return ((points[i - 1], points[i]) for i in range(len(points)))
+
+
+def _segment_distance(px: float, py: float, a: Point, b: Point) -> float:
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    length2 = dx * dx + dy * dy
+    t = 0.0 if length2 == 0 else max(0.0, min(1.0, ((px - a[0]) * dx + (py - a[1]) * dy) / length2))
+    return math.hypot(px - a[0] - t * dx, py - a[1] - t * dy)
+
+
+def _inside(px: float, py: float, points: Sequence[Point]) -> bool:
+    inside = False
+    for (x0, y0), (x1, y1) in _edges(points):
+        if (y0 > py) != (y1 > py) and px < x0 + (py - y0) * (x1 - x0) / (y1 - y0):
+            inside = not inside
+    return inside
+
+
+def footprint_radius(description) -> float:
+    """Radius (m) of the smallest circle about base_footprint (the root link of a
+    ``urdf_file.RobotDescription``) that holds every collision shape of the robot in plan."""
+    root = description.root_link
+    radius = 0.0
+    for name, link in description.links.items():
+        for collision in link.collisions:
+            pose = description.transform(root, name) @ collision.origin.matrix()
+            radius = max(radius, _shape_reach(collision.geometry, pose))
+    return radius
+
+
+def _shape_reach(geometry, pose) -> float:
+    """The farthest any point of ``geometry`` (placed by the 4x4 ``pose``) lies from the z axis."""
+    shape, size = geometry.shape, geometry.size
+    if shape == "sphere":
+        return math.hypot(*pose[:2, 3]) + size[0]
+    if shape == "box":
+        corners = [(sx * size[0] / 2, sy * size[1] / 2, sz * size[2] / 2)
+                   for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]
+    elif shape == "cylinder":
+        radius, length = size
+        corners = [(radius * math.cos(a), radius * math.sin(a), sz * length / 2)
+                   for a in np.linspace(0.0, 2 * math.pi, 32, endpoint=False) for sz in (-1, 1)]
+    else:                                    # a mesh: its frame origin only (none in our URDFs)
+        corners = [(0.0, 0.0, 0.0)]
+    points = pose[:3, :3] @ np.array(corners).T + pose[:3, 3:4]
+    return float(np.max(np.hypot(points[0], points[1])))
+
+
+def _number(value: float) -> str:
+    """-1.1 -> '-1.1', 0 -> '0.0', 0.2454 -> '0.245'."""
+    return repr(round(float(value), 3) + 0.0)
