@@ -5,8 +5,6 @@ Frames: ``world`` is the SDF world frame (z up); the robot's reference frame is
 centre of mass, so every pose here is converted to and from ``base_footprint``.
 Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
-import contextlib
-import ctypes
 import os
 import tempfile
 from typing import Dict, Sequence, Tuple
@@ -14,35 +12,12 @@ from xml.etree import ElementTree
 
 import numpy as np
 
-_LIBC = ctypes.CDLL(None)
-
-
-@contextlib.contextmanager
-def _quiet_output():
-    """Silence what pybullet's C++ code prints straight to file descriptors 1 and 2 (its build
-    date, the URDF importer's notes); Python's own output is unaffected afterwards."""
-    saved = []
-    try:
-        with open(os.devnull, "w") as null:
-            for fd in (1, 2):
-                saved.append((fd, os.dup(fd)))
-                os.dup2(null.fileno(), fd)
-            yield
-    finally:
-        _LIBC.fflush(None)  # what C buffered goes to /dev/null too
-        for fd, copy in saved:
-            os.dup2(copy, fd)
-            os.close(copy)
-
-
-with _quiet_output():  # pybullet prints its build date on import
-    import pybullet
-
-
-from .robot_models import ModelSpec  # noqa: E402  (after pybullet's quiet import)
-from .urdf_file import RobotDescription  # noqa: E402
-from .world_bullet import WORLD_COLLISION_GROUP, build_world  # noqa: E402
-from .world_sdf import World  # noqa: E402
+from .bullet import pybullet, quiet_output
+from .camera import disable_egl, enable_egl
+from .robot_models import ModelSpec
+from .urdf_file import RobotDescription
+from .world_bullet import WORLD_COLLISION_GROUP, build_world
+from .world_sdf import World
 
 
 Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]
@@ -82,9 +57,10 @@ class TurtleBotPhysics:
 
     def __init__(self, spec: ModelSpec, description: RobotDescription, world: World,
                  spawn: Sequence[float], time_step: float, solver_iterations: int = 20,
-                 gui: bool = False):
+                 gui: bool = False, egl: bool = False):
         """``spawn`` is (x, y, z, yaw) of base_footprint in the world; ``gui`` opens pybullet's
-        own window (the caller checks that a display exists)."""
+        own window (the caller checks that a display exists); ``egl`` loads the EGL renderer for
+        cameras where it works here (see ``self.egl``)."""
         self.spec = spec
         self.description = description
         self.time_step = time_step
@@ -92,6 +68,10 @@ class TurtleBotPhysics:
         if self.client < 0:
             raise RuntimeError("pybullet could not open its window")
         cid = self.client
+        self.egl = False
+        if egl and not gui:  # before any body: the plugin draws only bodies created after it
+            with quiet_output():
+                self.egl = enable_egl(cid)
         pybullet.setTimeStep(time_step, physicsClientId=cid)
         pybullet.setGravity(0, 0, -GRAVITY, physicsClientId=cid)
         pybullet.setPhysicsEngineParameter(numSolverIterations=solver_iterations,
@@ -111,7 +91,7 @@ class TurtleBotPhysics:
         cid = self.client
         tmp = _urdf_for_bullet(path)
         try:
-            with _quiet_output():
+            with quiet_output():
                 robot = pybullet.loadURDF(
                     tmp, flags=(pybullet.URDF_MERGE_FIXED_LINKS | pybullet.URDF_USE_INERTIA_FROM_FILE
                            | pybullet.URDF_USE_IMPLICIT_CYLINDER),
@@ -208,5 +188,7 @@ class TurtleBotPhysics:
     def close(self) -> None:
         """Disconnect the pybullet client."""
         if self.client is not None:
+            with quiet_output():
+                disable_egl(self.client)  # client ids are reused after a disconnect
             pybullet.disconnect(physicsClientId=self.client)
             self.client = None

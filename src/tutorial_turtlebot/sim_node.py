@@ -11,6 +11,7 @@ Publications (relative names resolve in the node's namespace, as Gazebo's plugin
   joint_states (sensor_msgs/JointState) 30 Hz, wheel_left_joint, wheel_right_joint (rad, rad/s)
   scan (sensor_msgs/LaserScan)          5 Hz, base_scan
   imu (sensor_msgs/Imu)                 200 Hz, imu_link, linear acceleration includes gravity
+  camera/... (waffle, waffle_pi, burger with ~camera)  30 Hz: see camera_publisher
   A message type nobody subscribes to is not even computed.
 Subscriptions:
   cmd_vel (geometry_msgs/Twist)         linear.x (m/s), angular.z (rad/s); kept until the next
@@ -22,7 +23,8 @@ Parameters (private):
   ~world (turtlebot3_world)   a name from worlds/ or a path to an SDF file
   ~x_pos, ~y_pos, ~yaw        spawn of base_footprint (m, m, rad); empty = the world's spawn
   ~z_pos (0.0)                m
-  ~camera (false)             burger only: carry the AutoRace camera
+  ~camera (model's)           simulate the camera: waffle, waffle_pi by default; true on a
+                              burger gives the AutoRace burger's pitched 320x240 camera
   ~lidar_model (gazebo)       gazebo (+inf no return) or lds01 (the real driver: 0.0)
   ~odom_source (world)        world (ground truth from the spawn pose) or encoders (from 0)
   ~clamp_cmd_vel (true)       hold cmd_vel to the model's limits, as the real firmware does
@@ -51,6 +53,7 @@ from sensor_msgs.msg import Imu, JointState, LaserScan
 from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
+from .camera_publisher import CameraPublisher
 from .errors import UserError
 from .kinematics import yaw_from_quat
 from .pacing import Pacer
@@ -94,7 +97,7 @@ def read_config() -> SimConfig:
         y=_param("y_pos", None, float, allow_empty=True),
         z=_param("z_pos", 0.0, float),
         yaw=_param("yaw", None, float, allow_empty=True),
-        camera=_param("camera", False, bool),
+        camera=_param("camera", None, bool, allow_empty=True),
         lidar_model=_param("lidar_model", "gazebo", str),
         odom_source=_param("odom_source", "world", str),
         clamp_cmd_vel=_param("clamp_cmd_vel", True, bool),
@@ -129,6 +132,8 @@ class SimNode:
         self.publishers = {"clock": self._publish_clock, "odom": self._publish_odom,
                            "joint_states": self._publish_joints, "scan": self._publish_scan,
                            "imu": self._publish_imu}
+        if sim.camera is not None:
+            self.publishers["camera"] = CameraPublisher(sim).publish
         rospy.Subscriber("cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
         for name, action in (("reset_simulation", sim.reset_simulation),
                              ("reset_world", sim.reset_world),
@@ -336,8 +341,12 @@ def main() -> None:
         rospy.logfatal("gazebo: %s", err)
         sys.exit(2)
     rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
-                  sim.spec.name, sim.world.name, sim.spawn[0], sim.spawn[1], sim.spawn[3],
+                  sim.spec.name, config.world, sim.spawn[0], sim.spawn[1], sim.spawn[3],
                   config.time_step, real_time_factor or "max")
+    if sim.camera is not None:
+        spec = sim.camera_spec
+        rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
+                      math.degrees(spec.hfov), spec.rate, sim.camera.renderer_name)
     try:
         SimNode(sim, real_time_factor, paused, status_period).spin()
     finally:

@@ -12,11 +12,12 @@ from typing import List, Optional, Tuple
 import numpy as np
 
 from . import kinematics
+from .camera import CameraRenderer, validate_spec
 from .diff_drive import SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController, sanitize_command
 from .errors import UserError
 from .lidar import LaserConfig, laser_config, ranges_from_distances, ray_directions
 from .physics import GRAVITY, TurtleBotPhysics
-from .robot_models import get_model
+from .robot_models import CameraSpec, get_model
 from .spawn_check import check_spawn, footprint_radius
 from .schedule import NS_PER_S, RateSchedule, seconds_to_ns
 from .urdf_file import read_urdf, urdf_path
@@ -24,6 +25,7 @@ from .wheel_odometry import WheelOdometry
 from .world_sdf import load_world, resolve_world
 
 ODOM_SOURCES = ("world", "encoders")
+CAMERA_FRAME = "camera_rgb_optical_frame"  # every camera message's frame, as Gazebo's plugins
 CONTROL_RATE = 30.0  # Hz: the Gazebo diff-drive plugin's updateRate (ramp, odom, joint states)
 # s: low-pass time constant of the IMU's acceleration, like the MPU-9250's digital low-pass
 # filter; without it the wheel and caster contacts' chatter reads as +-2 m/s^2 noise.
@@ -40,7 +42,8 @@ class SimConfig:
     y: Optional[float] = None
     z: float = 0.0
     yaw: Optional[float] = None
-    camera: bool = False                 # burger: the AutoRace camera
+    camera: Optional[bool] = None        # None: the model's own camera, if it has one;
+                                         # True on a burger: the AutoRace camera
     lidar_model: str = "gazebo"
     odom_source: str = "world"
     clamp_cmd_vel: bool = True           # hold commands to the model's limits, as the firmware
@@ -107,12 +110,16 @@ class Simulation:
         world_path, world_spawn = resolve_world(config.world)
         self.world = load_world(world_path)
         spawn = self._spawn(world_spawn)
-        self.description = read_urdf(urdf_path(config.model, config.camera))
+        self.description = read_urdf(urdf_path(config.model, bool(config.camera)))
         check_spawn(self.world, spawn[0], spawn[1], footprint_radius(self.description),
                     z=spawn[2])
+        self.camera_spec = self._camera_spec()
         self.physics = TurtleBotPhysics(self.spec, self.description, self.world, spawn,
                                         config.time_step, config.solver_iterations,
-                                        config.gui)
+                                        config.gui, egl=self.camera_spec is not None)
+        self.camera = (CameraRenderer(self.physics.client, self.camera_spec,
+                                      use_egl=self.physics.egl or config.gui)
+                       if self.camera_spec else None)
         self.spawn = spawn
         self.step_ns = seconds_to_ns(config.time_step)
         self.drive = DiffDriveController(self.spec.wheel_separation, self.spec.wheel_radius,
@@ -126,10 +133,25 @@ class Simulation:
             "scan": RateSchedule(config.scan_rate),
             "imu": RateSchedule(config.imu_rate),
         }
+        if self.camera:
+            self.schedules["camera"] = RateSchedule(self.camera_spec.rate)
         self._rays = ray_directions(self.laser)
         self._rng = np.random.default_rng(config.seed)
         self.time_ns = 0
         self._reset_state()
+
+    def _camera_spec(self) -> Optional[CameraSpec]:
+        """The camera simulated: the model's own (waffle, waffle_pi) or, on a burger, the
+        AutoRace camera; None with camera off. UserError if it cannot be rendered."""
+        if self.config.camera is None:
+            spec = self.spec.camera
+        elif self.config.camera:
+            spec = self.spec.camera or self.spec.optional_camera
+        else:
+            return None
+        if spec is not None:
+            validate_spec(spec)
+        return spec
 
     def _spawn(self, world_spawn) -> Tuple[float, float, float, float]:
         default = world_spawn if world_spawn else (0.0, 0.0, 0.0)
@@ -166,7 +188,7 @@ class Simulation:
 
     def step(self) -> List[str]:
         """One physics step; returns the names of the outputs due at the new time (clock, odom,
-        joint_states, scan, imu), in that order."""
+        joint_states, scan, imu, camera), in that order."""
         if self.control.due(self.time_ns):
             left, right = self.drive.update(1.0 / CONTROL_RATE)
             self.physics.set_wheel_velocities(left, right)
@@ -224,6 +246,12 @@ class Simulation:
         _, ang = self.physics.velocity()
         return ImuState(tuple(orn), tuple(kinematics.to_body(orn, ang)),
                         tuple(kinematics.to_body(orn, self._imu_accel + (0.0, 0.0, GRAVITY))))
+
+    def camera_image(self, depth: bool = False):
+        """(rgb uint8 HxWx3, depth float32 HxW metres or None) seen from
+        camera_rgb_optical_frame now. Only with a camera (``self.camera``)."""
+        position, rotation = self.physics.frame_pose(CAMERA_FRAME)
+        return self.camera.render(position, rotation, depth=depth)
 
     def _update_imu_acceleration(self) -> None:
         lin, _ = self.physics.velocity()

@@ -7,10 +7,12 @@ TurtleBot3 worlds have none.
 
 Units: metres; poses in the world frame (z up), as in world_sdf.
 """
+import os
+import tempfile
 from typing import Dict, List, Sequence, Tuple
 
-import pybullet
 
+from .bullet import pybullet
 from .errors import WorldError
 from .world_sdf import Shape, World
 
@@ -40,17 +42,19 @@ def build_world(world: World, client_id: int) -> Dict[str, int]:
     A polyline that is not convex is one body whose extra pieces are links of that body.
     """
     bodies = {}
-    for shape in world.collisions:
-        bodies[shape.name] = _body(shape, client_id, collide=True)
-    for shape in world.visuals:
-        if shape.twin is None:
-            bodies[shape.name] = _body(shape, client_id, collide=False)
+    # Box, plane and polyline visuals are mesh files, read when their body is created.
+    with tempfile.TemporaryDirectory(prefix="tutorial_turtlebot_meshes_") as mesh_dir:
+        for shape in world.collisions:
+            bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=True)
+        for shape in world.visuals:
+            if shape.twin is None:
+                bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=False)
     return bodies
 
 
-def _body(shape: Shape, cid: int, collide: bool) -> int:
+def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
     """One fixed body for ``shape``: collision and visual geometry, or visual only."""
-    pieces = _pieces(shape, cid, collide)
+    pieces = _pieces(shape, cid, mesh_dir, collide)
     (base_col, base_vis), links = pieces[0], pieces[1:]
     orientation = pybullet.getQuaternionFromEuler(shape.pose[3:], physicsClientId=cid)
     body = pybullet.createMultiBody(
@@ -74,61 +78,83 @@ def _body(shape: Shape, cid: int, collide: bool) -> int:
     return body
 
 
-def _pieces(shape: Shape, cid: int, collide: bool) -> List[Tuple[int, int]]:
-    """(collision shape id or -1, visual shape id) per convex piece of ``shape``, in its frame."""
+def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[int, int]]:
+    """(collision shape id or -1, visual shape id) per convex piece of ``shape``, in its frame.
+
+    Box and plane visuals are mesh files too (``_mesh_visual``): pybullet's EGL renderer
+    tessellates a GEOM_BOX through a convex hull that flattens a box about 800 times wider than
+    thick (the 100 m ground, 5 cm thick) into its middle plane, with one triangle missing.
+    """
     rgba = shape.rgba
     if shape.kind == "polyline":
         polygons = [shape.points] if _is_convex(shape.points) else _triangulate(shape)
-        return [_prism(polygon, shape.size[0], rgba, cid, collide) for polygon in polygons]
-    kind = {"box": pybullet.GEOM_BOX, "cylinder": pybullet.GEOM_CYLINDER,
-            "sphere": pybullet.GEOM_SPHERE, "plane": pybullet.GEOM_BOX}[shape.kind]
-    if shape.kind == "box":
-        col_args = vis_args = {"halfExtents": [s / 2 for s in shape.size]}
-    elif shape.kind == "cylinder":
+        return [_prism(polygon, shape.size[0], rgba, cid, mesh_dir, collide)
+                for polygon in polygons]
+    if shape.kind in ("box", "plane"):
+        if shape.kind == "box":
+            half = [s / 2 for s in shape.size]
+            col_args = {"halfExtents": half}
+            z_range = (-half[2], half[2])
+        else:
+            half = [s / 2 for s in shape.size] + [PLANE_THICKNESS / 2]
+            col_args = {"halfExtents": [max(s, PLANE_MIN_EXTENT) / 2 for s in shape.size]
+                        + [half[2]], "collisionFramePosition": (0, 0, -half[2])}
+            z_range = (-PLANE_THICKNESS, 0.0)
+        col = (pybullet.createCollisionShape(pybullet.GEOM_BOX, physicsClientId=cid, **col_args)
+               if collide else -1)
+        hx, hy = half[0], half[1]
+        rectangle = [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)]
+        return [(col, _mesh_visual(rectangle, *z_range, rgba, cid, mesh_dir))]
+    kind = {"cylinder": pybullet.GEOM_CYLINDER, "sphere": pybullet.GEOM_SPHERE}[shape.kind]
+    if shape.kind == "cylinder":
         col_args = {"radius": shape.size[0], "height": shape.size[1]}
         vis_args = {"radius": shape.size[0], "length": shape.size[1]}
-    elif shape.kind == "sphere":
-        col_args = vis_args = {"radius": shape.size[0]}
     else:
-        half = PLANE_THICKNESS / 2
-        col_args = {"halfExtents": [max(s, PLANE_MIN_EXTENT) / 2 for s in shape.size] + [half],
-                    "collisionFramePosition": (0, 0, -half)}
-        vis_args = {"halfExtents": [s / 2 for s in shape.size] + [half],
-                    "visualFramePosition": (0, 0, -half)}
+        col_args = vis_args = {"radius": shape.size[0]}
     col = pybullet.createCollisionShape(kind, physicsClientId=cid, **col_args) if collide else -1
     vis = pybullet.createVisualShape(kind, rgbaColor=rgba, physicsClientId=cid, **vis_args)
     return [(col, vis)]
 
 
-def _prism(polygon: Sequence[Point], height: float, rgba, cid: int,
+def _prism(polygon: Sequence[Point], height: float, rgba, cid: int, mesh_dir: str,
            collide: bool) -> Tuple[int, int]:
     """A convex counter-clockwise polygon extruded from z 0 to ``height``: a convex-hull collision
-    shape (pybullet inflates it by its 1 mm collision margin) and a flat-shaded triangle mesh of
-    the same solid."""
-    bottom = [(x, y, 0.0) for x, y in polygon]
-    top = [(x, y, height) for x, y in polygon]
-    col = (pybullet.createCollisionShape(pybullet.GEOM_MESH, vertices=bottom + top,
+    shape (pybullet inflates it by its 1 mm collision margin) and a flat-shaded visual mesh of the
+    same solid."""
+    corners = [(x, y, z) for z in (0.0, height) for x, y in polygon]
+    col = (pybullet.createCollisionShape(pybullet.GEOM_MESH, vertices=corners,
                                          physicsClientId=cid) if collide else -1)
-    vertices, normals, indices = [], [], []
+    return col, _mesh_visual(polygon, 0.0, height, rgba, cid, mesh_dir)
 
-    def face(corners, normal):
-        first = len(vertices)
-        vertices.extend(corners)
-        normals.extend([normal] * len(corners))
-        for i in range(1, len(corners) - 1):            # a fan, counter-clockwise from outside
-            indices.extend((first, first + i, first + i + 1))
 
-    face(top, (0.0, 0.0, 1.0))
-    face(bottom[::-1], (0.0, 0.0, -1.0))
+def _mesh_visual(polygon: Sequence[Point], z0: float, z1: float, rgba, cid: int,
+                 mesh_dir: str) -> int:
+    """Visual shape of a convex counter-clockwise polygon extruded from ``z0`` to ``z1``,
+    flat-shaded, written as a Wavefront file in ``mesh_dir`` (read when its body is created).
+
+    A file, because pybullet's EGL renderer draws no mesh given as vertex lists, and flattens
+    thin boxes; both renderers draw a file as it is.
+    """
     n = len(polygon)
+    normals = [(0.0, 0.0, 1.0), (0.0, 0.0, -1.0)]
     for i in range(n):
         (x0, y0), (x1, y1) = polygon[i], polygon[(i + 1) % n]
         length = ((x1 - x0) ** 2 + (y1 - y0) ** 2) ** 0.5
-        face([bottom[i], bottom[(i + 1) % n], top[(i + 1) % n], top[i]],
-             ((y1 - y0) / length, (x0 - x1) / length, 0.0))
-    vis = pybullet.createVisualShape(pybullet.GEOM_MESH, vertices=vertices, normals=normals,
-                                     indices=indices, rgbaColor=rgba, physicsClientId=cid)
-    return col, vis
+        normals.append(((y1 - y0) / length, (x0 - x1) / length, 0.0))
+    # .obj indices count from 1: bottom corners 1..n, top corners n+1..2n; normal 1 up, 2 down,
+    # 3+i the side from corner i to corner i+1. Faces are counter-clockwise seen from outside.
+    faces = [[(n + 1 + i, 1) for i in range(n)], [(1 + i, 2) for i in reversed(range(n))]]
+    for i in range(n):
+        j = (i + 1) % n
+        faces.append([(1 + i, 3 + i), (1 + j, 3 + i), (n + 1 + j, 3 + i), (n + 1 + i, 3 + i)])
+    lines = ["v %.9g %.9g %.9g" % (x, y, z) for z in (z0, z1) for x, y in polygon]
+    lines += ["vn %.9g %.9g %.9g" % v for v in normals]
+    lines += ["f " + " ".join("%d//%d" % corner for corner in face) for face in faces]
+    fd, path = tempfile.mkstemp(suffix=".obj", prefix="visual_", dir=mesh_dir)
+    with os.fdopen(fd, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path, rgbaColor=rgba,
+                                      physicsClientId=cid)
 
 
 def _cross(o: Point, a: Point, b: Point) -> float:

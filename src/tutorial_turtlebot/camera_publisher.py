@@ -1,0 +1,106 @@
+"""ROS glue of the simulated camera: the topics Gazebo's camera plugins and the real robot use.
+
+Publications (relative names, frame ``camera_rgb_optical_frame`` for all, one render a tick):
+  camera/rgb/image_raw, camera/image                    sensor_msgs/Image, rgb8
+  camera/rgb/camera_info, camera/camera_info            sensor_msgs/CameraInfo, plumb_bob
+  camera/rgb/image_raw/compressed, camera/image/compressed   sensor_msgs/CompressedImage, jpeg
+  waffle (RealSense R200) also:
+  camera/depth/image_raw (32FC1, metres, NaN outside 0.4..5 m), camera/depth/camera_info,
+  camera/depth/points (sensor_msgs/PointCloud2, organized, x y z rgb)
+Nothing is rendered or encoded for topics nobody subscribes to.
+"""
+import rospy
+from sensor_msgs.msg import CameraInfo, CompressedImage, Image, PointCloud2, PointField
+
+from .camera import (CameraIntrinsics, depth_image, jpeg_available, jpeg_bytes,
+                     pointcloud_bytes, pointcloud_xyz)
+from .simulation import CAMERA_FRAME, Simulation
+
+COMPRESSED_FORMAT = "rgb8; jpeg compressed bgr8"  # as image_transport's compressed plugin
+
+
+def camera_info(intrinsics: CameraIntrinsics, width: int, height: int) -> CameraInfo:
+    """The CameraInfo gazebo_ros_camera_utils fills for these intrinsics."""
+    info = CameraInfo(width=width, height=height, distortion_model=intrinsics.distortion_model,
+                      D=intrinsics.D(), K=intrinsics.K(), R=intrinsics.R(), P=intrinsics.P())
+    info.header.frame_id = CAMERA_FRAME
+    return info
+
+
+class CameraPublisher:
+    """Renders the sim's camera when one of its topics has a subscriber, and publishes."""
+
+    def __init__(self, sim: Simulation, make_publisher=rospy.Publisher):
+        """``make_publisher(topic, type, queue_size=...)``: rospy.Publisher, or a stand-in."""
+        self.sim = sim
+        spec = sim.camera_spec
+
+        def pubs(msg_type, *topics):
+            return [make_publisher(t, msg_type, queue_size=1) for t in topics]
+        self.image_pubs = pubs(Image, "camera/rgb/image_raw", "camera/image")
+        self.info_pubs = pubs(CameraInfo, "camera/rgb/camera_info", "camera/camera_info")
+        self.jpeg_pubs = (pubs(CompressedImage, "camera/rgb/image_raw/compressed",
+                               "camera/image/compressed") if jpeg_available() else [])
+        self.depth_pubs, self.points_pubs = [], []
+        if spec.depth:
+            self.depth_pubs = pubs(Image, "camera/depth/image_raw")
+            self.info_pubs += pubs(CameraInfo, "camera/depth/camera_info")
+            self.points_pubs = pubs(PointCloud2, "camera/depth/points")
+        self.info = camera_info(sim.camera.intrinsics, spec.width, spec.height)
+        self.image = Image(height=spec.height, width=spec.width, encoding="rgb8",
+                           is_bigendian=0, step=3 * spec.width)
+        self.image.header.frame_id = CAMERA_FRAME
+        self.depth = Image(height=spec.height, width=spec.width, encoding="32FC1",
+                           is_bigendian=0, step=4 * spec.width)
+        self.depth.header.frame_id = CAMERA_FRAME
+        self.jpeg = CompressedImage(format=COMPRESSED_FORMAT)
+        self.jpeg.header.frame_id = CAMERA_FRAME
+        self.points = PointCloud2(height=spec.height, width=spec.width, is_bigendian=False,
+                                  is_dense=False)
+        self.points.header.frame_id = CAMERA_FRAME
+
+    @staticmethod
+    def _wanted(pubs):
+        return [p for p in pubs if p.get_num_connections() > 0]
+
+    def publish(self, stamp: rospy.Time) -> None:
+        """One camera tick at sim time ``stamp``."""
+        images, jpegs = self._wanted(self.image_pubs), self._wanted(self.jpeg_pubs)
+        depths, points = self._wanted(self.depth_pubs), self._wanted(self.points_pubs)
+        for pub in self._wanted(self.info_pubs):
+            self.info.header.stamp = stamp
+            pub.publish(self.info)
+        if not (images or jpegs or depths or points):
+            return
+        rgb, depth = self.sim.camera_image(depth=bool(depths or points))
+        if images:
+            self.image.header.stamp = stamp
+            self.image.data = rgb.tobytes()
+            for pub in images:
+                pub.publish(self.image)
+        if jpegs:
+            self.jpeg.header.stamp = stamp
+            self.jpeg.data = jpeg_bytes(rgb)
+            for pub in jpegs:
+                pub.publish(self.jpeg)
+        if depths:
+            self.depth.header.stamp = stamp
+            self.depth.data = depth_image(depth).tobytes()
+            for pub in depths:
+                pub.publish(self.depth)
+        if points:
+            self._publish_points(stamp, rgb, depth, points)
+
+    def _publish_points(self, stamp, rgb, depth, pubs) -> None:
+        xyz, colours = pointcloud_xyz(depth, self.sim.camera.intrinsics, organized=True,
+                                      rgb=rgb)
+        data, point_step, fields = pointcloud_bytes(xyz, colours)
+        msg = self.points
+        msg.header.stamp = stamp
+        msg.fields = [PointField(name=name, offset=offset, datatype=PointField.FLOAT32, count=1)
+                      for name, offset in fields]
+        msg.point_step = point_step
+        msg.row_step = point_step * msg.width
+        msg.data = data
+        for pub in pubs:
+            pub.publish(msg)
