@@ -19,14 +19,14 @@ if [ "$(id -u)" -eq 0 ]; then SUDO=(); else SUDO=(sudo); fi
 debian_packages() {
   if [ -f "$NOETIC" ]; then
     echo ros-noetic-ros-base ros-noetic-robot-state-publisher ros-noetic-tf2-ros \
-         ros-noetic-rostest ros-noetic-image-view python3-venv python3-pip python3-pytest \
+         ros-noetic-rostest ros-noetic-image-view ros-noetic-rviz python3-venv python3-pip python3-pytest \
          python3-pil libegl1 libgl1-mesa-dri build-essential cmake
   else
     echo ros-core python3-rospy python3-roslaunch python3-rostest librostest-dev rosbash catkin \
          python3-catkin-pkg python3-geometry-msgs python3-sensor-msgs python3-nav-msgs \
          python3-std-srvs python3-rosgraph-msgs python3-tf2-ros python3-tf2-msgs \
          ros-robot-state-publisher python3-venv python3-pip python3-pytest \
-         python3-pil libegl1 libgl1-mesa-dri \
+         python3-pil libegl1 libgl1-mesa-dri ros-image-view rviz \
          build-essential cmake ignition-tools libsdformat-dev
   fi
 }
