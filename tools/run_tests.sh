@@ -39,8 +39,9 @@ run_rostests() {
     n=$(grep -oE '^ \* TESTS: [0-9]+' "$out" | grep -oE '[0-9]+' | tail -n 1)
     e=$(grep -oE '^ \* ERRORS: [0-9]+' "$out" | grep -oE '[0-9]+' | tail -n 1)
     f=$(grep -oE '^ \* FAILURES: [0-9]+' "$out" | grep -oE '[0-9]+' | tail -n 1)
-    n=${n:-0}; e=${e:-0}; f=${f:-0}
-    if [ "$status" -ne 0 ] && [ $((e + f)) -eq 0 ]; then f=1; fi  # died before reporting
+    e=${e:-0}; f=${f:-0}
+    if [ -z "$n" ]; then n=1; f=1; echo "rostest $name reported no result: counted as failed"
+    elif [ "$status" -ne 0 ] && [ $((e + f)) -eq 0 ]; then f=1; fi  # died after reporting
     passed=$((passed + n - e - f)); failed=$((failed + e + f))
   done
 }

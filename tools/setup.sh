@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Set up everything tutorial_turtlebot needs, idempotently: system packages, the Python venv
 # (Debian's rospy + PyPI's pybullet and numpy>=2) and the catkin workspace .catkin_ws/.
-# Usage: tools/setup.sh            (what `make demo` and `make test` run first)
+# Usage: tools/setup.sh               (what `make demo` and `make test` run first)
+#        tools/setup.sh --deps-only   (packages and venv only: for use from your own
+#                                      ~/catkin_ws, see README)
 # Uses /opt/ros/noetic where it exists (Ubuntu 20.04), Debian's ROS packages in /usr otherwise.
 set -euo pipefail
 
@@ -27,6 +29,7 @@ debian_packages() {
          python3-std-srvs python3-rosgraph-msgs python3-tf2-ros python3-tf2-msgs \
          ros-robot-state-publisher python3-venv python3-pip python3-pytest \
          python3-pil libegl1 libgl1-mesa-dri ros-image-view rviz \
+         libgeometry-msgs-dev libnav-msgs-dev libsensor-msgs-dev \
          build-essential cmake ignition-tools libsdformat-dev
   fi
 }
@@ -66,9 +69,22 @@ install_python() {
   touch "$stamp"
 }
 
+link_package() {
+  # The workspace's copy of the package: a folder of links to the repository's entries, all
+  # but .catkin_ws itself (a link to the whole repository would let rosrun find every script
+  # a second time inside .catkin_ws and refuse to pick).
+  local pkg="$WS/src/tutorial_turtlebot" entry
+  [ -L "$pkg" ] && rm "$pkg"
+  mkdir -p "$pkg"
+  find "$pkg" -maxdepth 1 -type l ! -exec test -e {} \; -delete   # entries since removed
+  for entry in "$ROOT"/* "$ROOT"/.ci; do
+    [ -e "$entry" ] || continue
+    ln -sfn "$entry" "$pkg/$(basename "$entry")"
+  done
+}
+
 build_workspace() {
-  mkdir -p "$WS/src"
-  ln -sfn "$ROOT" "$WS/src/tutorial_turtlebot"
+  link_package
   # shellcheck disable=SC1090
   if [ -f "$NOETIC" ]; then set +u; source "$NOETIC"; set -u; fi
   say "building catkin workspace $WS"
@@ -80,7 +96,10 @@ build_workspace() {
   fi
 }
 
-install_system
-install_python
-build_workspace
-say "done: run 'source $WS/devel/setup.bash' for a shell with rosrun/roslaunch/rostest"
+case "${1:-}" in
+  --deps-only) install_system; install_python
+               say "done: packages and $VENV ready; build your workspace as the README says" ;;
+  "") install_system; install_python; build_workspace
+      say "done: run 'source $WS/devel/setup.bash' for a shell with rosrun/roslaunch/rostest" ;;
+  *) fail "usage: tools/setup.sh [--deps-only]" ;;
+esac

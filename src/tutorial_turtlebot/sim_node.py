@@ -39,6 +39,7 @@ Parameters (private):
 import math
 import os
 import queue
+import signal
 import sys
 import threading
 import time
@@ -120,6 +121,7 @@ class SimNode:
         self._requests = queue.Queue()
         self._wake = threading.Event()
         self._command = None
+        self.stop_requested = False  # set by the SIGINT/SIGTERM handler of main()
         self._build_messages()
         self.pubs = {
             "clock": rospy.Publisher("/clock", Clock, queue_size=1),
@@ -277,6 +279,8 @@ class SimNode:
         steps = 0
         while True:
             steps += 1
+            if self.stop_requested:
+                break
             if steps % SHUTDOWN_CHECK_STEPS == 0 or self.paused:
                 if rospy.is_shutdown():
                     break
@@ -322,7 +326,10 @@ def _own_the_clock() -> None:
 
 def main() -> None:
     """Entry point of ``scripts/sim``."""
-    rospy.init_node("gazebo", disable_signals=False)
+    # rospy's own SIGINT handler shuts ROS down from inside whatever the loop is doing (often a
+    # publish, holding its locks) and could hang there; here the signal only asks the loop to
+    # stop, and the loop shuts ROS down when it is between steps.
+    rospy.init_node("gazebo", disable_signals=True)
     _own_the_clock()
     try:
         config = read_config()
@@ -347,7 +354,14 @@ def main() -> None:
         spec = sim.camera_spec
         rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
                       math.degrees(spec.hfov), spec.rate, sim.camera.renderer_name)
+    node = SimNode(sim, real_time_factor, paused, status_period)
+
+    def request_stop(_signum, _frame):
+        node.stop_requested = True
+    signal.signal(signal.SIGINT, request_stop)
+    signal.signal(signal.SIGTERM, request_stop)
     try:
-        SimNode(sim, real_time_factor, paused, status_period).spin()
+        node.spin()
     finally:
         sim.close()
+        rospy.signal_shutdown("simulation stopped")

@@ -1,9 +1,15 @@
 """Helpers for the rostest nodes: wait on wall time (a stalled /clock must fail a test, never
-hang it), collect messages, read poses. Imported by the test_*.py nodes beside it."""
+hang it), collect messages, read poses, run the package's nodes as a user does (on a pipe or on
+a pseudo-terminal). Imported by the test_*.py nodes beside it."""
 import math
+import os
+import signal
+import subprocess
+import termios
 import threading
 import time
 
+import roslib.packages
 import rospy
 from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import Odometry
@@ -16,9 +22,10 @@ def yaw_of(q) -> float:
 
 
 def wait_for(predicate, timeout: float, step: float = 0.02) -> bool:
-    """Poll ``predicate`` until true or ``timeout`` wall seconds pass."""
+    """Poll ``predicate`` until true or ``timeout`` wall seconds pass (or the node is shut
+    down, e.g. because rostest is tearing down after the sim died)."""
     deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
+    while time.monotonic() < deadline and not rospy.is_shutdown():
         if predicate():
             return True
         time.sleep(step)
@@ -30,17 +37,29 @@ class Recorder:
 
     def __init__(self, topic, msg_type):
         self.msgs = []
+        self.received = []  # ROS time at which each message of self.msgs arrived
         self._lock = threading.Lock()
         self.sub = rospy.Subscriber(topic, msg_type, self._on_msg, queue_size=100)
 
     def _on_msg(self, msg):
         with self._lock:
+            header = getattr(msg, "header", None)
+            if header is not None and self.msgs and header.stamp < self.msgs[-1].header.stamp:
+                # sim time went back (reset_simulation): older stamps would mislead
+                self.msgs, self.received = [], []
             self.msgs.append(msg)
+            self.received.append(rospy.Time.now())
 
     def clear(self):
         """Forget what was received (e.g. after the sim's time was reset)."""
         with self._lock:
             self.msgs = []
+            self.received = []
+
+    def snapshot(self):
+        """A copy of (messages, their arrival ROS times), for messages without a header."""
+        with self._lock:
+            return list(self.msgs), list(self.received)
 
     def between(self, start: rospy.Time, end: rospy.Time):
         """Messages stamped within [start, end], in arrival order."""
@@ -79,3 +98,126 @@ class Driver:
         """Call a std_srvs/Empty service such as /gazebo/reset_world."""
         rospy.wait_for_service(service, timeout=20.0)
         rospy.ServiceProxy(service, Empty)()
+
+
+def executable(name: str, package: str = "tutorial_turtlebot") -> str:
+    """Path of a node executable as roslaunch (and rosrun) find it: the devel or install space
+    relay first."""
+    found = roslib.packages.find_node(package, name)
+    if not found:
+        raise RuntimeError("no executable %r in package %s" % (name, package))
+    return found[0]
+
+
+class NodeProcess:
+    """A package node started as ``rosrun PACKAGE NAME ARGS`` would start it, with stdin from
+    /dev/null and stdout and stderr collected; stopped with a signal as Ctrl-C stops it."""
+
+    def __init__(self, name: str, *args: str, env=None):
+        self.proc = subprocess.Popen([executable(name)] + list(args),
+                                     stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, env=env)
+        self._out = {"stdout": [], "stderr": []}
+        self._threads = [threading.Thread(target=self._drain, args=(stream, key), daemon=True)
+                         for stream, key in ((self.proc.stdout, "stdout"),
+                                             (self.proc.stderr, "stderr"))]
+        for t in self._threads:
+            t.start()
+
+    def _drain(self, stream, key):
+        for line in iter(stream.readline, b""):
+            self._out[key].append(line.decode("utf-8", "replace"))
+
+    @property
+    def stdout(self) -> str:
+        return "".join(self._out["stdout"])
+
+    @property
+    def stderr(self) -> str:
+        return "".join(self._out["stderr"])
+
+    def interrupt(self, timeout: float = 20.0):
+        """SIGINT (what Ctrl-C sends), then wait up to ``timeout`` wall s; the exit status, or
+        None if it is still running."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+        return self.wait(timeout)
+
+    def wait(self, timeout: float):
+        """The exit status within ``timeout`` wall s, or None if still running."""
+        try:
+            status = self.proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            return None
+        for t in self._threads:
+            t.join(2.0)
+        return status
+
+    def kill(self) -> None:
+        """Make sure it is gone (for tearDown)."""
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait(10.0)
+
+
+class PtyProcess:
+    """A package node run in a pseudo-terminal as in a user's terminal window: the pty's slave
+    side is its stdin, stdout, stderr and controlling terminal (``setsid -c``), so keys written
+    to the master side arrive as typed keys and Ctrl-C (``\\x03``) sends SIGINT."""
+
+    def __init__(self, name: str, *args: str):
+        self.master, self.slave = os.openpty()
+        attrs = termios.tcgetattr(self.slave)  # a terminal as a shell leaves it: cooked, echo
+        attrs[3] |= termios.ICANON | termios.ECHO | termios.ISIG
+        termios.tcsetattr(self.slave, termios.TCSANOW, attrs)
+        self.modes_before = termios.tcgetattr(self.slave)
+        self.proc = subprocess.Popen(["setsid", "-c", executable(name)] + list(args),
+                                     stdin=self.slave, stdout=self.slave, stderr=self.slave,
+                                     close_fds=True)
+        self._chunks = []
+        self._lock = threading.Lock()
+        self._reader = threading.Thread(target=self._drain, daemon=True)
+        self._reader.start()
+
+    def _drain(self):
+        while True:
+            try:
+                data = os.read(self.master, 4096)
+            except OSError:  # EIO once no process holds the slave side (we keep it: not here)
+                return
+            if not data:
+                return
+            with self._lock:
+                self._chunks.append(data)
+
+    @property
+    def output(self) -> str:
+        """Everything the program wrote to its terminal so far (CR LF as LF)."""
+        with self._lock:
+            return b"".join(self._chunks).decode("utf-8", "replace").replace("\r\n", "\n")
+
+    def send(self, keys: str) -> None:
+        """Type ``keys``."""
+        os.write(self.master, keys.encode("latin-1"))
+
+    def modes(self):
+        """The terminal's current settings (termios.tcgetattr of the slave side)."""
+        return termios.tcgetattr(self.slave)
+
+    def wait(self, timeout: float):
+        """The exit status within ``timeout`` wall s, or None if still running."""
+        try:
+            return self.proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            return None
+
+    def close(self) -> None:
+        """Make sure the program is gone, then close the terminal."""
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait(10.0)
+        for fd in (self.slave, self.master):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
