@@ -142,9 +142,10 @@ def measure_startup() -> float:
         run.stop()
 
 
-def measure_running(rtf, topics, seconds=8.0, warmup=3.0):
-    """(achieved factor, sim CPU % of one core, sim RSS MB) with ``topics`` subscribed."""
-    run = SimRun(["real_time_factor:=%g" % rtf])
+def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger"):
+    """(achieved factor, sim CPU % of one core, sim RSS MB, messages per sim second) with
+    ``topics`` subscribed."""
+    run = SimRun(["real_time_factor:=%g" % rtf], model=model)
     try:
         run.start()
         subs = run.start_helper("subscribers.py", *topics)
@@ -156,14 +157,15 @@ def measure_running(rtf, topics, seconds=8.0, warmup=3.0):
         end_warmup = time.time() + warmup
         while time.time() < end_warmup:
             read_report(subs)
-        wall0, sim0, _ = read_report(subs)
+        wall0, sim0, count0 = read_report(subs)
         cpu0 = cpu_seconds(pid)
         samples = int(seconds)
         for _ in range(samples):
-            wall1, sim1, _ = read_report(subs)
+            wall1, sim1, count1 = read_report(subs)
         cpu1 = cpu_seconds(pid)
         mem = rss_mb(pid)
-        return (sim1 - sim0) / (wall1 - wall0), 100.0 * (cpu1 - cpu0) / (wall1 - wall0), mem
+        return ((sim1 - sim0) / (wall1 - wall0), 100.0 * (cpu1 - cpu0) / (wall1 - wall0), mem,
+                (count1 - count0) / (sim1 - sim0))
     finally:
         run.stop()
 
@@ -181,6 +183,36 @@ def physics_bound(seconds=20.0) -> float:
         return seconds / (time.perf_counter() - t0)
     finally:
         sim.close()
+
+
+def render_times(frames=10):
+    """Median ms per rendered frame at each RESOLUTIONS size, with EGL (where it loads) and
+    with TinyRenderer, from the Waffle Pi's camera pose at the turtlebot3_world spawn."""
+    from tutorial_turtlebot.camera import CameraRenderer
+    from tutorial_turtlebot.robot_models import CameraSpec
+    from tutorial_turtlebot.simulation import CAMERA_FRAME, SimConfig, Simulation
+    results = {}
+    for camera in (True, False):  # True: the sim loads EGL for its camera; False: none
+        sim = Simulation(SimConfig(model="waffle_pi", camera=camera))
+        try:
+            pose = sim.physics.frame_pose(CAMERA_FRAME)
+            for width, height, hfov in RESOLUTIONS:
+                renderer = CameraRenderer(sim.physics.client, CameraSpec(width, height, hfov, 30.0),
+                                          use_egl=sim.physics.egl)
+                renderer.render(*pose)
+                times = []
+                for _ in range(frames if (sim.physics.egl or width < 1000) else 3):
+                    t0 = time.perf_counter()
+                    renderer.render(*pose)
+                    times.append(time.perf_counter() - t0)
+                results[(renderer.renderer_name, width, height)] = 1000 * median(times)
+        finally:
+            sim.close()
+    return results
+
+
+RESOLUTIONS = ((160, 120, 1.085595), (320, 240, 1.085595), (640, 480, 1.085595),
+               (1920, 1080, 1.3439))
 
 
 def median(values):
@@ -220,7 +252,17 @@ def main():
         row("as fast as possible, %d subscriber(s) to /scan" % n,
             "%.1f" % median([measure_running(0, ["/scan:%d" % n])[0]
                              for _ in range(args.runs)]), "x")
-    print("cameras: not simulated yet (issue 3)", flush=True)
+    for model, target in (("waffle_pi", ">= 27/s at >= 0.9x"), ("waffle", "")):
+        cam = [measure_running(1.0, ["/camera/rgb/image_raw"], model=model)
+               for _ in range(args.runs)]
+        row("%s camera subscribed, real time: images per sim second" % model,
+            "%.1f" % median([r[3] for r in cam]), "/s", target)
+        row("%s camera subscribed, real time: achieved factor" % model,
+            "%.2f" % median([r[0] for r in cam]), "x")
+        row("%s camera subscribed, real time: sim CPU" % model,
+            "%.0f" % median([r[1] for r in cam]), "% core")
+    for (renderer, width, height), ms in sorted(render_times().items()):
+        row("render %dx%d, %s" % (width, height, renderer), "%.1f" % ms, "ms")
 
 
 if __name__ == "__main__":

@@ -10,7 +10,6 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ElementTree
 
-import numpy as np
 import pybullet
 import pytest
 import yaml
@@ -390,31 +389,28 @@ def test_laser_at_the_spawn_sees_the_tunnel_not_the_lines(autorace_bullet):
     assert name == "course::link::collision" and distance == pytest.approx(1.0, abs=1e-3)
 
 
-def test_camera_view_at_the_spawn(autorace, autorace_bullet):
-    """What the AutoRace camera (tb3_facts 4.5: 320 x 240, HFOV 1.085595, pitched 10 degrees
-    down, on the burger's URDF) sees at the spawn, rendered by pybullet at 80 x 60: yellow lane
-    pixels in the left half, white ones in the right half, dark floor between."""
-    _, cid = autorace_bullet
-    description = read_urdf(urdf_path("burger", with_camera=True))
-    camera = description.transform("base_footprint", "camera_rgb_frame")
-    x, y, _ = AUTORACE_SPAWN
-    eye = np.array((x, y, 0.0)) + camera[:3, 3]
-    forward, up = camera[:3, 0], camera[:3, 2]
-    view = pybullet.computeViewMatrix(eye, eye + forward, up)
-    width, height, hfov = 80, 60, 1.085595
-    vfov = math.degrees(2 * math.atan(math.tan(hfov / 2) * height / width))
-    projection = pybullet.computeProjectionMatrixFOV(vfov, width / height, 0.03, 100.0)
-    rgb = np.reshape(pybullet.getCameraImage(width, height, view, projection,
-                                             physicsClientId=cid)[2],
-                     (height, width, 4))[:, :, :3].astype(int)
-    bottom = rgb[height // 2:]                                   # the floor in front
+def test_camera_view_at_the_spawn():
+    """What the AutoRace burger's camera (tb3_facts 4.5: 320 x 240, HFOV 1.085595, pitched 10
+    degrees down) shows at the spawn, rendered by the sim's own camera (what /camera/image
+    publishes): yellow lane pixels in the left half, white ones in the right, dark floor
+    between."""
+    sim = Simulation(SimConfig(model="burger", world="turtlebot3_autorace", camera=True))
+    try:
+        for _ in range(40):                                      # settle on the wheels
+            sim.step()
+        rgb, _ = sim.camera_image()
+    finally:
+        sim.close()
+    height, width, _ = rgb.shape
+    assert (width, height) == (320, 240)
+    bottom = rgb[height // 2:].astype(int)                       # the floor in front
     yellow = (bottom[:, :, 0] > 180) & (bottom[:, :, 1] > 180) & (bottom[:, :, 2] < 80)
     white = (bottom > 200).all(axis=2)
     dark = (bottom < 40).all(axis=2)
     half = width // 2
-    assert yellow[:, :half].sum() > 10 and yellow[:, half:].sum() == 0
-    assert white[:, half:].sum() > 10 and white[:, :half].sum() == 0
-    assert dark[-1, half - 5:half + 5].all()                     # the lane itself is dark
+    assert yellow[:, :half].sum() > 40 and yellow[:, half:].sum() == 0
+    assert white[:, half:].sum() > 40 and white[:, :half].sum() == 0
+    assert dark[-1, half - 20:half + 20].all()                   # the lane itself is dark
 
 
 def test_robot_stands_on_the_course_at_the_spawn():
