@@ -21,6 +21,23 @@ def yaw_of(q) -> float:
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
+ARENA_APOTHEM = 2.540  # m: turtlebot3_world's inner wall flats from the centre (tb3_facts 4.2)
+
+
+def arena_wall_distance(origin, bearing_deg: float) -> float:
+    """Distance from ``origin`` (x, y) to turtlebot3_world's hexagonal inner wall (flats at
+    ARENA_APOTHEM, corners on +-x) along a bearing (degrees counter-clockwise from +x)."""
+    ox, oy = origin
+    dx, dy = math.cos(math.radians(bearing_deg)), math.sin(math.radians(bearing_deg))
+    best = math.inf
+    for k in range(6):
+        nx, ny = math.cos(math.radians(30 + 60 * k)), math.sin(math.radians(30 + 60 * k))
+        along = nx * dx + ny * dy
+        if along > 1e-9:
+            best = min(best, (ARENA_APOTHEM - (nx * ox + ny * oy)) / along)
+    return best
+
+
 def wait_for(predicate, timeout: float, step: float = 0.02) -> bool:
     """Poll ``predicate`` until true or ``timeout`` wall seconds pass (or the node is shut
     down, e.g. because rostest is tearing down after the sim died)."""

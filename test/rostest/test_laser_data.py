@@ -14,7 +14,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 
-from sim_test_support import wait_for
+from sim_test_support import arena_wall_distance, wait_for
 
 SPAWN = (-2.0, -0.5)
 SCAN_ORIGIN = (SPAWN[0] - 0.032, SPAWN[1])  # burger base_scan is 0.032 m behind base_footprint
@@ -29,17 +29,8 @@ LINE = re.compile(r"ahead: %s \| 0 deg: %s  90 deg: %s  180 deg: %s  270 deg: %s
 
 
 def wall_distance(bearing_deg: float) -> float:
-    """Distance from the scan origin at spawn to the arena's hexagonal inner wall along a
-    bearing (degrees counter-clockwise from +x)."""
-    ox, oy = SCAN_ORIGIN
-    dx, dy = math.cos(math.radians(bearing_deg)), math.sin(math.radians(bearing_deg))
-    best = math.inf
-    for k in range(6):
-        nx, ny = math.cos(math.radians(30 + 60 * k)), math.sin(math.radians(30 + 60 * k))
-        along = nx * dx + ny * dy
-        if along > 1e-9:
-            best = min(best, (2.540 - (nx * ox + ny * oy)) / along)
-    return best
+    """Distance from the scan origin at the spawn to the arena's wall along a bearing."""
+    return arena_wall_distance(SCAN_ORIGIN, bearing_deg)
 
 
 def ray_bearing(degrees: float) -> float:

@@ -16,7 +16,7 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState, LaserScan
 
-from sim_test_support import Recorder, wait_for, yaw_of
+from sim_test_support import Recorder, arena_wall_distance, wait_for, yaw_of
 
 EXPECTED_TOPICS = {
     "/clock": "rosgraph_msgs/Clock",
@@ -31,17 +31,8 @@ SCAN_ORIGIN_X = SPAWN[0] - 0.032  # burger base_scan is 0.032 m behind base_foot
 
 
 def wall_distance(bearing_deg: float) -> float:
-    """Distance from the Burger's scan origin at spawn to the arena's hexagonal inner wall
-    (flats at distance 2.540 from the centre, corners on +-x) along a bearing."""
-    ox, oy = SCAN_ORIGIN_X, SPAWN[1]
-    dx, dy = math.cos(math.radians(bearing_deg)), math.sin(math.radians(bearing_deg))
-    best = math.inf
-    for k in range(6):
-        nx, ny = math.cos(math.radians(30 + 60 * k)), math.sin(math.radians(30 + 60 * k))
-        along = nx * dx + ny * dy
-        if along > 1e-9:
-            best = min(best, (2.540 - (nx * ox + ny * oy)) / along)
-    return best
+    """Distance from the scan origin at the spawn to the arena's wall along a bearing."""
+    return arena_wall_distance((SCAN_ORIGIN_X, SPAWN[1]), bearing_deg)
 
 
 class SimGraphTest(unittest.TestCase):
