@@ -42,20 +42,22 @@ def autorace():
     return load_world(resolve_world("turtlebot3_autorace")[0])
 
 
-@pytest.fixture(scope="module")
-def house_bullet(house):
+def _built(world):
+    """(body id -> shape name, client id) of ``world`` built in a fresh pybullet client."""
     cid = pybullet.connect(pybullet.DIRECT)
-    bodies = build_world(house, cid)
+    bodies = build_world(world, cid)
     yield {body: name for name, body in bodies.items()}, cid
     pybullet.disconnect(physicsClientId=cid)
+
+
+@pytest.fixture(scope="module")
+def house_bullet(house):
+    yield from _built(house)
 
 
 @pytest.fixture(scope="module")
 def autorace_bullet(autorace):
-    cid = pybullet.connect(pybullet.DIRECT)
-    bodies = build_world(autorace, cid)
-    yield {body: name for name, body in bodies.items()}, cid
-    pybullet.disconnect(physicsClientId=cid)
+    yield from _built(autorace)
 
 
 def cast(world, start, heading, length=3.5, pitch=0.0):
