@@ -149,10 +149,9 @@ class TurtleBotPhysics:
         com = pybullet.getBasePositionAndOrientation(self.robot, physicsClientId=self.client)
         return pybullet.multiplyTransforms(*com, *self._footprint_in_com)
 
-    def velocity(self) -> Tuple[np.ndarray, np.ndarray]:
+    def velocity(self) -> Tuple[Tuple[float, float, float], Tuple[float, float, float]]:
         """World-frame (linear m/s of the centre of mass, angular rad/s) of the chassis."""
-        lin, ang = pybullet.getBaseVelocity(self.robot, physicsClientId=self.client)
-        return np.array(lin), np.array(ang)
+        return pybullet.getBaseVelocity(self.robot, physicsClientId=self.client)
 
     def wheel_states(self) -> Tuple[Tuple[float, float], Tuple[float, float]]:
         """((left, right) joint angles in rad, (left, right) joint velocities in rad/s)."""

@@ -4,6 +4,8 @@ A ``RateSchedule`` of 30 Hz fires at the first physics step at or after each mul
 1/30 s; the average rate is exact, each firing late by less than one physics step.
 """
 
+import math
+
 NS_PER_S = 1_000_000_000
 
 
@@ -22,11 +24,13 @@ class RateSchedule:
         self._period_ns = NS_PER_S / rate_hz  # float: exact mean rate over many periods
         self._count = 0
         self._origin_ns = 0
+        self.next_ns = 0  # the first time (ns) at which due() will say True
 
     def reset(self, now_ns: int) -> None:
         """Start over: the next firing is at ``now_ns``."""
         self._origin_ns = now_ns
         self._count = 0
+        self.next_ns = now_ns
 
     def due(self, now_ns: int) -> bool:
         """True (once) when a firing is due at ``now_ns``; skips firings missed while paused."""
@@ -35,4 +39,5 @@ class RateSchedule:
         # max(): the floor division may round one period short of what the test above saw.
         self._count = max(self._count + 1,
                           int((now_ns - self._origin_ns) // self._period_ns) + 1)
+        self.next_ns = math.ceil(self._origin_ns + self._count * self._period_ns)
         return True

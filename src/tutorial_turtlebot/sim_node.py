@@ -57,6 +57,7 @@ from std_srvs.srv import Empty, EmptyResponse
 from .camera_publisher import CameraPublisher
 from .errors import UserError
 from .kinematics import yaw_from_quat
+from .nonblocking_publisher import Backlog, make_nonblocking
 from .pacing import Pacer
 from .physics import WHEEL_JOINTS
 from .simulation import SimConfig, Simulation
@@ -123,24 +124,33 @@ class SimNode:
         self._command = None
         self.stop_requested = False  # set by the SIGINT/SIGTERM handler of main()
         self._build_messages()
+        # Every message is written from this loop without a thread switch, and a subscriber
+        # that stops reading loses old messages instead of stalling the simulation.
+        self.backlog = Backlog()
         self.pubs = {
-            "clock": rospy.Publisher("/clock", Clock, queue_size=1),
-            "odom": rospy.Publisher("odom", Odometry, queue_size=1),
-            "joint_states": rospy.Publisher("joint_states", JointState, queue_size=1),
-            "scan": rospy.Publisher("scan", LaserScan, queue_size=1),
-            "imu": rospy.Publisher("imu", Imu, queue_size=1),
+            "clock": self._publisher("/clock", Clock),
+            "odom": self._publisher("odom", Odometry),
+            "joint_states": self._publisher("joint_states", JointState),
+            "scan": self._publisher("scan", LaserScan),
+            "imu": self._publisher("imu", Imu),
         }
         self.tf = tf2_ros.TransformBroadcaster()
+        make_nonblocking(self.tf.pub_tf, self.backlog)
         self.publishers = {"clock": self._publish_clock, "odom": self._publish_odom,
                            "joint_states": self._publish_joints, "scan": self._publish_scan,
                            "imu": self._publish_imu}
         if sim.camera is not None:
-            self.publishers["camera"] = CameraPublisher(sim).publish
+            self.publishers["camera"] = CameraPublisher(sim, self._publisher).publish
         rospy.Subscriber("cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
         for name, action in (("reset_simulation", sim.reset_simulation),
                              ("reset_world", sim.reset_world),
                              ("pause_physics", self._pause), ("unpause_physics", self._unpause)):
             rospy.Service("~" + name, Empty, self._service_handler(name, action))
+
+    def _publisher(self, topic, msg_type, queue_size=1) -> rospy.Publisher:
+        publisher = rospy.Publisher(topic, msg_type, queue_size=queue_size)
+        make_nonblocking(publisher, self.backlog)
+        return publisher
 
     # --- messages --------------------------------------------------------------------------------
 
@@ -289,6 +299,8 @@ class SimNode:
                     self._log_status()
             if not self._requests.empty():
                 self._handle_requests()
+            if self.backlog:
+                self.backlog.flush()
             if self.paused:
                 self._wake.wait(0.1)
                 self._wake.clear()

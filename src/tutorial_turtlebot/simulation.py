@@ -163,10 +163,12 @@ class Simulation:
         self.drive.reset()
         self.encoders.reset()
         self._last_control_ns = None
-        self._imu_velocity = (np.zeros(3), self.time_ns)
-        self._imu_accel = np.zeros(3)
+        self._imu_velocity = ((0.0, 0.0, 0.0), self.time_ns)
+        self._imu_accel = (0.0, 0.0, 0.0)
+        self._imu_state: Optional[ImuState] = None
         for schedule in list(self.schedules.values()) + [self.control]:
             schedule.reset(self.time_ns)
+        self._next_output_ns = self.time_ns
 
     # --- time and control --------------------------------------------------------------------
 
@@ -189,14 +191,17 @@ class Simulation:
     def step(self) -> List[str]:
         """One physics step; returns the names of the outputs due at the new time (clock, odom,
         joint_states, scan, imu, camera), in that order."""
-        if self.control.due(self.time_ns):
+        if self.time_ns >= self.control.next_ns and self.control.due(self.time_ns):
             left, right = self.drive.update(1.0 / CONTROL_RATE)
             self.physics.set_wheel_velocities(left, right)
         self.physics.step()
         self.time_ns += self.step_ns
+        if self.time_ns < self._next_output_ns:
+            return []
         due = [name for name, s in self.schedules.items() if s.due(self.time_ns)]
+        self._next_output_ns = min(s.next_ns for s in self.schedules.values())
         if "imu" in due:
-            self._update_imu_acceleration()
+            self._sample_imu()
         if self.config.odom_source == "encoders" and ("odom" in due or "joint_states" in due):
             self._update_encoders()
         return due
@@ -223,8 +228,7 @@ class Simulation:
         pos, orn = self.physics.footprint_pose()
         lin, ang = self.physics.velocity()
         lin_body = kinematics.to_body(orn, lin)
-        return OdomState(tuple(pos), tuple(orn), (lin_body[0], lin_body[1], 0.0),
-                         (0.0, 0.0, float(ang[2])))
+        return OdomState(pos, orn, (lin_body[0], lin_body[1], 0.0), (0.0, 0.0, ang[2]))
 
     def ground_truth(self):
         """World pose of base_footprint ((x, y, z), (qx, qy, qz, qw)), whatever odom_source."""
@@ -242,10 +246,9 @@ class Simulation:
 
     def imu(self) -> ImuState:
         """What the IMU reads now (orientation absolute in the world, yaw 0 facing +x)."""
-        _, orn = self.physics.footprint_pose()
-        _, ang = self.physics.velocity()
-        return ImuState(tuple(orn), tuple(kinematics.to_body(orn, ang)),
-                        tuple(kinematics.to_body(orn, self._imu_accel + (0.0, 0.0, GRAVITY))))
+        if self._imu_state is None or self._imu_state_ns != self.time_ns:
+            self._sample_imu(filter_acceleration=False)
+        return self._imu_state
 
     def camera_image(self, depth: bool = False):
         """(rgb uint8 HxWx3, depth float32 HxW metres or None) seen from
@@ -253,14 +256,23 @@ class Simulation:
         position, rotation = self.physics.frame_pose(CAMERA_FRAME)
         return self.camera.render(position, rotation, depth=depth)
 
-    def _update_imu_acceleration(self) -> None:
-        lin, _ = self.physics.velocity()
-        last_lin, last_ns = self._imu_velocity
-        if self.time_ns > last_ns:
-            dt = (self.time_ns - last_ns) / NS_PER_S
-            raw = (lin - last_lin) / dt
-            self._imu_accel += (raw - self._imu_accel) * (dt / (IMU_ACCEL_TIME_CONSTANT + dt))
-        self._imu_velocity = (lin, self.time_ns)
+    def _sample_imu(self, filter_acceleration: bool = True) -> None:
+        """Read the chassis once at an IMU tick: low-pass the acceleration (from the change of
+        velocity since the last tick) and keep what the IMU reads now."""
+        _, orn = self.physics.footprint_pose()
+        lin, ang = self.physics.velocity()
+        if filter_acceleration:
+            last_lin, last_ns = self._imu_velocity
+            if self.time_ns > last_ns:
+                dt = (self.time_ns - last_ns) / NS_PER_S
+                gain = dt / (IMU_ACCEL_TIME_CONSTANT + dt)
+                self._imu_accel = tuple(a + ((v - v0) / dt - a) * gain
+                                        for a, v, v0 in zip(self._imu_accel, lin, last_lin))
+            self._imu_velocity = (lin, self.time_ns)
+        ax, ay, az = self._imu_accel
+        self._imu_state = ImuState(orn, kinematics.to_body(orn, ang),
+                                   kinematics.to_body(orn, (ax, ay, az + GRAVITY)))
+        self._imu_state_ns = self.time_ns
 
     def _update_encoders(self) -> None:
         (left, right), _ = self.physics.wheel_states()

@@ -92,6 +92,19 @@ def test_resumes_without_a_burst_after_a_gap():
     assert len(fired) in (30, 31)
 
 
+@pytest.mark.parametrize("rate", [5.0, 30.0, 100.0, 200.0, 7.0, 13.0, 1000.0])
+def test_next_ns_is_when_due_will_say_yes(rate):
+    """next_ns is the earliest time due() is True: the simulation skips asking before then.
+    Checked at every 0.1 ms over 2 s, and after a reset."""
+    schedule = RateSchedule(rate)
+    schedule.reset(7)
+    for now in range(7, 2 * NS_PER_S, 100_000):
+        expected = now >= schedule.next_ns
+        assert schedule.due(now) is expected
+    schedule.reset(123_456_789)
+    assert schedule.next_ns == 123_456_789
+
+
 @pytest.mark.parametrize("rate", [0.0, -5.0, math.nan])
 def test_rate_must_be_positive(rate):
     """A rate that is not > 0 Hz raises ValueError."""
@@ -127,9 +140,9 @@ def run(pacer, clock, sim_start, sim_step, steps, compute=0.0005):
     return sim
 
 
-def make(rtf):
+def make(rtf, min_sleep=0.001):
     clock = FakeClock()
-    return Pacer(rtf, clock=clock, sleep=clock.sleep), clock
+    return Pacer(rtf, clock=clock, sleep=clock.sleep, min_sleep=min_sleep), clock
 
 
 def test_rtf_1_keeps_wall_time_with_sim_time():
@@ -139,6 +152,23 @@ def test_rtf_1_keeps_wall_time_with_sim_time():
     assert clock.now - 100.0 == pytest.approx(1.0, abs=1e-9)
     assert sum(clock.sleeps) == pytest.approx(1.0 - 100 * 0.0005, abs=1e-9)
     assert all(s == pytest.approx(0.0095) for s in clock.sleeps)
+
+
+def test_default_sleeps_once_per_20_ms_of_steps():
+    """By default steps run until the sim is 20 ms ahead of wall time, then one sleep catches up:
+    2.5 ms steps costing 0.1 ms sleep after every 9th step (21.6 ms ahead). After each wait the
+    sim is less than 20 ms ahead of wall time, and never behind."""
+    clock = FakeClock()
+    pacer = Pacer(1.0, clock=clock, sleep=clock.sleep)
+    sim = 0.0
+    for _ in range(400):
+        clock.now += 0.0001
+        sim += 0.0025
+        pacer.wait(sim)
+        assert -1e-9 <= sim - (clock.now - 100.0) < Pacer.MIN_SLEEP
+    assert len(clock.sleeps) == 400 // 9
+    assert all(s == pytest.approx(9 * 0.0024) for s in clock.sleeps)
+    assert 1.0 - Pacer.MIN_SLEEP < clock.now - 100.0 <= 1.0
 
 
 def test_rtf_2_takes_half_the_wall_time():
