@@ -1,8 +1,9 @@
 """Pacing simulated time against the wall clock, and measuring the achieved real-time factor.
 
 The simulator owns the clock: it steps physics as fast as it can and, with a real-time factor
-``rtf`` > 0, sleeps whenever sim time runs ahead of ``rtf`` x wall time. ``rtf`` 0 means never
-sleep. Times in seconds (float) from ``time.monotonic``.
+``rtf`` > 0, sleeps once sim time runs ``MIN_SLEEP`` ahead of ``rtf`` x wall time, until wall
+time has caught up. ``rtf`` 0 means never sleep. Times in seconds (float) from
+``time.monotonic``.
 """
 import time
 from typing import Callable, Optional
