@@ -166,6 +166,7 @@ class Simulation:
         self._imu_velocity = ((0.0, 0.0, 0.0), self.time_ns)
         self._imu_accel = (0.0, 0.0, 0.0)
         self._imu_state: Optional[ImuState] = None
+        self._imu_state_ns: Optional[int] = None  # sim time of _imu_state
         for schedule in list(self.schedules.values()) + [self.control]:
             schedule.reset(self.time_ns)
         self._next_output_ns = self.time_ns
@@ -246,7 +247,7 @@ class Simulation:
 
     def imu(self) -> ImuState:
         """What the IMU reads now (orientation absolute in the world, yaw 0 facing +x)."""
-        if self._imu_state is None or self._imu_state_ns != self.time_ns:
+        if self._imu_state_ns != self.time_ns:
             self._sample_imu(filter_acceleration=False)
         return self._imu_state
 
