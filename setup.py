@@ -2,4 +2,7 @@
 from catkin_pkg.python_setup import generate_distutils_setup
 from setuptools import setup
 
-setup(**generate_distutils_setup(packages=["tutorial_turtlebot"], package_dir={"": "src"}))
+setup(**generate_distutils_setup(
+    packages=["tutorial_turtlebot", "tutorial_turtlebot.sim", "tutorial_turtlebot.gazebo",
+              "tutorial_turtlebot.lab"],
+    package_dir={"": "src"}))

@@ -172,7 +172,7 @@ def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger"):
 
 def physics_bound(seconds=20.0) -> float:
     """Real-time factor of the Simulation stepped with no ROS and no sensors."""
-    from tutorial_turtlebot.simulation import SimConfig, Simulation
+    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
     sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
     try:
         sim.command(0.1, 0.2)
@@ -188,9 +188,9 @@ def physics_bound(seconds=20.0) -> float:
 def render_times(frames=10):
     """Median ms per rendered frame at each RESOLUTIONS size, with EGL (where it loads) and
     with TinyRenderer, from the Waffle Pi's camera pose at the turtlebot3_world spawn."""
-    from tutorial_turtlebot.camera import CameraRenderer
-    from tutorial_turtlebot.robot_models import CameraSpec
-    from tutorial_turtlebot.simulation import CAMERA_FRAME, SimConfig, Simulation
+    from tutorial_turtlebot.sim.camera import CameraRenderer
+    from tutorial_turtlebot.sim.robot_models import CameraSpec
+    from tutorial_turtlebot.sim.simulation import CAMERA_FRAME, SimConfig, Simulation
     results = {}
     for camera in (True, False):  # True: the sim loads EGL for its camera; False: none
         sim = Simulation(SimConfig(model="waffle_pi", camera=camera))

@@ -14,15 +14,15 @@ import pybullet
 import pytest
 from PIL import Image
 
-from tutorial_turtlebot import camera
-from tutorial_turtlebot import physics as physics_module
-from tutorial_turtlebot.camera import (BACKGROUND_RGB, CameraIntrinsics, CameraRenderer,
+from tutorial_turtlebot.sim import camera
+from tutorial_turtlebot.sim import physics as physics_module
+from tutorial_turtlebot.sim.camera import (BACKGROUND_RGB, CameraIntrinsics, CameraRenderer,
                                        depth_image, jpeg_bytes, pointcloud_bytes,
                                        pointcloud_xyz, validate_spec, view_matrix)
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.robot_models import AUTORACE_CAMERA, MODELS, CameraSpec
-from tutorial_turtlebot.simulation import SimConfig, Simulation
-from tutorial_turtlebot.world_bullet import WORLD_COLLISION_GROUP
+from tutorial_turtlebot.sim.robot_models import AUTORACE_CAMERA, MODELS, CameraSpec
+from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+from tutorial_turtlebot.sim.world_bullet import WORLD_COLLISION_GROUP
 
 OPTICAL_FRAME = "camera_rgb_optical_frame"
 RENDERERS = ("tiny", "egl")

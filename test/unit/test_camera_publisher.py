@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 import rospy
 
-from tutorial_turtlebot.camera import CameraIntrinsics
-from tutorial_turtlebot.camera_publisher import CameraPublisher
-from tutorial_turtlebot.robot_models import MODELS
+from tutorial_turtlebot.sim.camera import CameraIntrinsics
+from tutorial_turtlebot.gazebo.camera_publisher import CameraPublisher
+from tutorial_turtlebot.sim.robot_models import MODELS
 
 
 class FakePublisher:

@@ -3,10 +3,10 @@ import math
 
 import pytest
 
-from tutorial_turtlebot.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR, SNAP_TOLERANCE,
+from tutorial_turtlebot.sim.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR, SNAP_TOLERANCE,
                                            DiffDriveController, body_twist, sanitize_command,
                                            wheel_rim_speeds)
-from tutorial_turtlebot.robot_models import MODELS
+from tutorial_turtlebot.sim.robot_models import MODELS
 
 SEPARATIONS = (0.160, 0.287)   # burger, waffle / waffle_pi
 RADIUS = 0.033

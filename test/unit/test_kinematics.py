@@ -5,7 +5,7 @@ import numpy as np
 import pybullet
 import pytest
 
-from tutorial_turtlebot.kinematics import (quat_from_yaw, rotation_matrix, to_body, wrap_angle,
+from tutorial_turtlebot.sim.kinematics import (quat_from_yaw, rotation_matrix, to_body, wrap_angle,
                                            yaw_from_quat)
 
 YAWS = (0.0, 0.3, -0.3, math.pi / 2, -math.pi / 2, 2.5, -2.5, math.pi - 1e-9)

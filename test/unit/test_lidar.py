@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.lidar import (LASER_MODELS, laser_config, ranges_from_distances,
+from tutorial_turtlebot.sim.lidar import (LASER_MODELS, laser_config, ranges_from_distances,
                                       ray_directions)
 
 GAZEBO = laser_config("gazebo")

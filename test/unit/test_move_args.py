@@ -7,7 +7,7 @@ import sys
 import pytest
 
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.move_args import USAGE, parse, user_args, wants_help
+from tutorial_turtlebot.lab.move_args import USAGE, parse, user_args, wants_help
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 

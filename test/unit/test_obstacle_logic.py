@@ -6,9 +6,9 @@ import random
 import numpy as np
 import pytest
 
-from tutorial_turtlebot.obstacle_logic import (
+from tutorial_turtlebot.lab.obstacle_logic import (
     FORWARD, TURN_LEFT, TURN_RIGHT, TURN_RADIUS, StopAtObstacle, Wander, turn_radius)
-from tutorial_turtlebot.scan_reading import Scan
+from tutorial_turtlebot.lab.scan_reading import Scan
 
 INF = math.inf
 NAN = math.nan

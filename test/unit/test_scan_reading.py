@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from tutorial_turtlebot.scan_reading import (
+from tutorial_turtlebot.lab.scan_reading import (
     Scan, bearings, closest, handout_readings, index_at, is_valid, more_open_side,
     nearest_in_sector, range_ahead, range_at, report)
 

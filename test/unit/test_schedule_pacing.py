@@ -3,8 +3,8 @@ import math
 
 import pytest
 
-from tutorial_turtlebot.pacing import Pacer
-from tutorial_turtlebot.schedule import NS_PER_S, RateSchedule, seconds_to_ns
+from tutorial_turtlebot.sim.pacing import Pacer
+from tutorial_turtlebot.sim.schedule import NS_PER_S, RateSchedule, seconds_to_ns
 
 STEP_NS = 2_500_000   # the default physics step, 2.5 ms
 

@@ -10,12 +10,12 @@ import numpy as np
 import pybullet
 import pytest
 
-from tutorial_turtlebot import kinematics
-from tutorial_turtlebot.diff_drive import SAFE_LINEAR
+from tutorial_turtlebot.sim import kinematics
+from tutorial_turtlebot.sim.diff_drive import SAFE_LINEAR
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.robot_models import MODELS
-from tutorial_turtlebot.simulation import SimConfig, Simulation
-from tutorial_turtlebot.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.robot_models import MODELS
+from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
 
 MODEL_NAMES = ("burger", "waffle", "waffle_pi")
 TB3_SPAWN = (-2.0, -0.5)

@@ -3,8 +3,8 @@ smooth stop, the model's limits, the printed text. No ROS master, no terminal.
 Units: m/s, rad/s."""
 import pytest
 
-from tutorial_turtlebot.robot_models import model_limits
-from tutorial_turtlebot.teleop_keys import Teleop
+from tutorial_turtlebot.sim.robot_models import model_limits
+from tutorial_turtlebot.lab.teleop_keys import Teleop
 
 
 def teleop(model="burger"):

@@ -14,7 +14,7 @@ import time
 import pytest
 
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.terminal_keys import TerminalKeys
+from tutorial_turtlebot.lab.terminal_keys import TerminalKeys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 LFLAG = 3  # index of the local modes in termios.tcgetattr()
@@ -87,7 +87,7 @@ def test_restored_and_unwound_when_a_signal_would_kill_the_process(terminal, sig
     before = termios.tcgetattr(stream)
     child = textwrap.dedent("""
         import os, signal, sys, termios
-        from tutorial_turtlebot.terminal_keys import TerminalKeys
+        from tutorial_turtlebot.lab.terminal_keys import TerminalKeys
         try:
             with TerminalKeys(sys.stdin):
                 assert not termios.tcgetattr(sys.stdin)[3] & termios.ICANON

@@ -7,7 +7,7 @@ import pybullet
 import pytest
 
 from tutorial_turtlebot.errors import ModelError, UrdfError
-from tutorial_turtlebot.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
 
 ZERO = (0.0, 0.0, 0.0)
 DOWN = (-1.57, 0.0, 0.0)      # wheel and caster links: z of the link along +y of base_link

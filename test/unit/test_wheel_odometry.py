@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from tutorial_turtlebot.wheel_odometry import WheelOdometry
+from tutorial_turtlebot.sim.wheel_odometry import WheelOdometry
 
 RADIUS = 0.033
 SEPARATIONS = (0.160, 0.287)

@@ -5,9 +5,9 @@ import numpy as np
 import pybullet
 import pytest
 
-from tutorial_turtlebot.world_bullet import (PLANE_MIN_EXTENT, WORLD_COLLISION_GROUP,
+from tutorial_turtlebot.sim.world_bullet import (PLANE_MIN_EXTENT, WORLD_COLLISION_GROUP,
                                              WORLD_FRICTION, build_world)
-from tutorial_turtlebot.world_sdf import WORLDS, load_world, resolve_world
+from tutorial_turtlebot.sim.world_sdf import WORLDS, load_world, resolve_world
 
 SCAN_Z = 0.182          # burger scan plane, m
 SPAWN = WORLDS["turtlebot3_world"].spawn

@@ -8,7 +8,7 @@ import subprocess
 import pytest
 
 from tutorial_turtlebot.errors import WorldError
-from tutorial_turtlebot.world_sdf import (DEFAULT_RGBA, WORLD_DIR, WORLDS, load_world,
+from tutorial_turtlebot.sim.world_sdf import (DEFAULT_RGBA, WORLD_DIR, WORLDS, load_world,
                                           resolve_world)
 
 WORLD_FILES = sorted(glob.glob(os.path.join(WORLD_DIR, "*.world")))

@@ -15,12 +15,12 @@ import pytest
 import yaml
 
 from tutorial_turtlebot.errors import WorldError
-from tutorial_turtlebot.spawn_check import (FLOOR_CLEARANCE, check_spawn, find_obstacle,
+from tutorial_turtlebot.sim.spawn_check import (FLOOR_CLEARANCE, check_spawn, find_obstacle,
                                             footprint_radius)
-from tutorial_turtlebot.simulation import SimConfig, Simulation
-from tutorial_turtlebot.urdf_file import read_urdf, urdf_path
-from tutorial_turtlebot.world_bullet import WORLD_COLLISION_GROUP, build_world
-from tutorial_turtlebot.world_sdf import WORLDS, load_world, resolve_world
+from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.world_bullet import WORLD_COLLISION_GROUP, build_world
+from tutorial_turtlebot.sim.world_sdf import WORLDS, load_world, resolve_world
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HOUSE = "turtlebot3_house::"

@@ -1,6 +1,6 @@
 """Where the package's data folders (urdf/, worlds/, ...) are, wherever the code runs from.
 
-In the source tree and a catkin devel space the modules sit in ``src/tutorial_turtlebot/`` two
+In the source tree and a catkin devel space the modules sit in ``src/tutorial_turtlebot/sim/`` three
 levels below the package root; in an install space the data is in ``share/tutorial_turtlebot``,
 which rospkg finds.
 """
@@ -8,7 +8,7 @@ import os
 
 PACKAGE = "tutorial_turtlebot"
 _SOURCE_ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
-                                             os.pardir, os.pardir))
+                                             os.pardir, os.pardir, os.pardir))
 
 
 def data_dir(name: str) -> str:

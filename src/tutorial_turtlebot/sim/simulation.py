@@ -14,7 +14,7 @@ import numpy as np
 from . import kinematics
 from .camera import CameraRenderer, validate_spec
 from .diff_drive import SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController, sanitize_command
-from .errors import UserError
+from ..errors import UserError
 from .lidar import LaserConfig, laser_config, ranges_from_distances, ray_directions
 from .physics import GRAVITY, TurtleBotPhysics
 from .robot_models import CameraSpec, get_model

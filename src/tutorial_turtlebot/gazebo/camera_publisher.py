@@ -12,9 +12,9 @@ Nothing is rendered or encoded for topics nobody subscribes to.
 import rospy
 from sensor_msgs.msg import CameraInfo, CompressedImage, Image, PointCloud2, PointField
 
-from .camera import (CameraIntrinsics, depth_image, jpeg_available, jpeg_bytes,
+from ..sim.camera import (CameraIntrinsics, depth_image, jpeg_available, jpeg_bytes,
                      pointcloud_bytes, pointcloud_xyz)
-from .simulation import CAMERA_FRAME, Simulation
+from ..sim.simulation import CAMERA_FRAME, Simulation
 
 COMPRESSED_FORMAT = "rgb8; jpeg compressed bgr8"  # as image_transport's compressed plugin
 

@@ -18,10 +18,10 @@ import sys
 
 import rospy
 
-from .errors import UserError
+from ..errors import UserError
 from .lab_node import CommandPublisher, model_name, number_param
 from .move_args import USAGE, parse, user_args, wants_help
-from .robot_models import model_limits
+from ..sim.robot_models import model_limits
 
 
 class MoveTurtlebot:

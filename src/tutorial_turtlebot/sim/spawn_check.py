@@ -14,7 +14,7 @@ from typing import Iterable, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .errors import WorldError
+from ..errors import WorldError
 from .world_sdf import Shape, World
 
 FLOOR_CLEARANCE = 0.01   # m: shapes entirely below this are floor coverings the robot drives on

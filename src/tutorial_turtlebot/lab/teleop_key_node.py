@@ -19,9 +19,9 @@ import sys
 
 import rospy
 
-from .errors import UserError
+from ..errors import UserError
 from .lab_node import CommandPublisher, model_name
-from .robot_models import model_limits
+from ..sim.robot_models import model_limits
 from .teleop_keys import Teleop
 from .terminal_keys import TerminalKeys
 

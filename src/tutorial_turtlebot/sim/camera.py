@@ -23,7 +23,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .bullet import pybullet
-from .errors import UserError
+from ..errors import UserError
 from .robot_models import CameraSpec
 
 try:  # Debian/Ubuntu python3-pil, PyPI Pillow

@@ -9,7 +9,7 @@ import threading
 import tty
 from typing import Optional
 
-from .errors import UserError
+from ..errors import UserError
 
 # Signals whose default action ends the process without unwinding the stack (kill, a closed
 # terminal window, Ctrl-\): they restore the terminal and unwind instead. (Ctrl-C raises

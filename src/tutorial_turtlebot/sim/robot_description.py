@@ -3,7 +3,7 @@
 on stderr naming the valid values, exit status 2."""
 import sys
 
-from .errors import UserError
+from ..errors import UserError
 from .urdf_file import read_urdf, urdf_path
 
 USAGE = "usage: robot_description MODEL [CAMERA]  (MODEL: burger, waffle, waffle_pi; CAMERA: true/false)"

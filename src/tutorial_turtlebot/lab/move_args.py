@@ -4,7 +4,7 @@ from typing import List, Sequence, Tuple
 
 from rosgraph.names import is_legal_remap
 
-from .errors import UserError
+from ..errors import UserError
 
 USAGE = ("usage: move_turtlebot LINEAR ANGULAR   "
          "(m/s forward, rad/s counter-clockwise; e.g. move_turtlebot 0.2 0.5)")

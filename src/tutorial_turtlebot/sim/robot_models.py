@@ -5,7 +5,7 @@ Units: metres, seconds, radians. Frames follow REP 103/105.
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
-from .errors import ModelError
+from ..errors import ModelError
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ import rospy
 from geometry_msgs.msg import Twist
 from sensor_msgs.msg import LaserScan
 
-from .robot_models import MODEL_NAMES
+from ..sim.robot_models import MODEL_NAMES
 
 # Wall-clock seconds the zero Twist is given to leave on shutdown (sim time may have stopped).
 SHUTDOWN_GRACE = 0.3

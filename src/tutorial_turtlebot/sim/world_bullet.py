@@ -13,7 +13,7 @@ from typing import Dict, List, Sequence, Tuple
 
 
 from .bullet import pybullet
-from .errors import WorldError
+from ..errors import WorldError
 from .world_sdf import Shape, World
 
 # World bodies are in collision group 4. A laser that must see the world only casts rays with

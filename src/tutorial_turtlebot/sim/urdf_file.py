@@ -14,7 +14,7 @@ from xml.parsers import expat
 
 import numpy as np
 
-from .errors import UrdfError
+from ..errors import UrdfError
 from .package_data import data_dir
 from .robot_models import get_model
 

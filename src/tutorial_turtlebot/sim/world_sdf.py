@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 from xml.parsers import expat
 
-from .errors import WorldError
+from ..errors import WorldError
 from .package_data import data_dir
 
 Pose = Tuple[float, float, float, float, float, float]   # x, y, z (m), roll, pitch, yaw (rad)

@@ -55,12 +55,12 @@ from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
 from .camera_publisher import CameraPublisher
-from .errors import UserError
-from .kinematics import yaw_from_quat
+from ..errors import UserError
+from ..sim.kinematics import yaw_from_quat
 from .nonblocking_publisher import Backlog, make_nonblocking
-from .pacing import Pacer
-from .physics import WHEEL_JOINTS
-from .simulation import SimConfig, Simulation
+from ..sim.pacing import Pacer
+from ..sim.physics import WHEEL_JOINTS
+from ..sim.simulation import SimConfig, Simulation
 
 # Gazebo diff-drive plugin's pose covariance diagonal (x, y, z, roll, pitch, yaw).
 POSE_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)

@@ -35,7 +35,7 @@ import rospy
 
 from .lab_node import ScanToCommand, fatal, model_name, number_param
 from .obstacle_logic import FORWARD, Wander, turn_radius
-from .robot_models import model_limits
+from ..sim.robot_models import model_limits
 
 
 class WanderNode:
