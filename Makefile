@@ -2,24 +2,33 @@
 #   make demo   set up, then the TurtleBot3 sim in turtlebot3_world with keyboard teleop
 #   make test   set up, then every test: unit (pytest, no master) and rostest (the real sim)
 #   make bench  set up, then the benchmark table
-# Each target does its own set-up first (tools/setup.sh, idempotent).
+#   make unit / make rostest   the two halves of make test
+#   make plan   what the set-up would install here (nothing is installed)
+# Each target does its own set-up first (tools/setup.sh, idempotent); the test targets also
+# make the Python 3.8 venv for the unit tests where a Python 3.8 exists (tools/setup.sh --test).
 SHELL := /bin/bash
 WS := $(CURDIR)/.catkin_ws
 ROS_ENV := source $(WS)/devel/setup.bash
 MODEL ?= $(or $(TURTLEBOT3_MODEL),burger)
 
-.PHONY: setup demo test unit rostest bench clean
+.PHONY: setup setup-test plan demo test unit rostest bench clean
 
 setup:
 	@bash tools/setup.sh
 
+setup-test:
+	@bash tools/setup.sh --test
+
+plan:
+	@/usr/bin/python3 tools/setup_plan.py
+
 demo: setup
 	@$(ROS_ENV) && roslaunch tutorial_turtlebot sim_teleop.launch model:=$(MODEL)
 
-test: setup
+test: setup-test
 	@$(ROS_ENV) && bash tools/run_tests.sh
 
-unit: setup
+unit: setup-test
 	@$(ROS_ENV) && bash tools/run_tests.sh unit
 
 rostest: setup

@@ -9,6 +9,8 @@ Measured (Burger in turtlebot3_world unless said):
   start-up          roslaunch sim.launch (roscore included) -> first /scan, wall s
   real time         real_time_factor 1, every sensor subscribed from another process:
                     achieved factor, sim CPU (% of one core), sim memory (RSS, MB)
+  jitter            the same: per topic, how far the gap between two arrivals differs from
+                    the gap between their stamps (p50, p99, max in ms; bench/jitter.py)
   fast              real_time_factor 0, every sensor subscribed / only /odom: achieved factor
   physics bound     the same world and robot stepped by pybullet with no ROS (and no sensors)
   scaling           real_time_factor 0, 1 / 4 / 8 subscribers to /scan: achieved factor
@@ -170,6 +172,32 @@ def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger"):
         run.stop()
 
 
+JITTER_TOPICS = ["/clock", "/imu", "/odom", "/joint_states", "/scan"]
+
+
+def measure_jitter(seconds=10.0, warmup=3.0):
+    """{topic: (p50, p99, max)} of the arrival-interval error (ms of wall time, see jitter.py)
+    at real time with every sensor subscribed from another process."""
+    run = SimRun(["real_time_factor:=1"])
+    try:
+        run.start()
+        subs = run.start_helper("subscribers.py", *ALL_SENSORS)
+        run.sim_pid()
+        deadline = time.time() + 60
+        while read_report(subs)[1] <= 0.0 and time.time() < deadline:
+            pass
+        time.sleep(warmup)
+        probe = run.start_helper("jitter.py", "%g" % seconds, *JITTER_TOPICS)
+        result = {}
+        for line in probe.stdout:
+            fields = line.split()
+            if len(fields) == 5 and fields[0] in JITTER_TOPICS:
+                result[fields[0]] = tuple(float(v) for v in fields[2:])
+        return result
+    finally:
+        run.stop()
+
+
 def physics_bound(seconds=20.0) -> float:
     """Real-time factor of the Simulation stepped with no ROS and no sensors."""
     from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
@@ -240,6 +268,11 @@ def main():
         "%.1f" % median([r[1] for r in rt]), "% core", TARGETS["rt_cpu"])
     row("real time, every sensor subscribed: sim memory (RSS)",
         "%.0f" % median([r[2] for r in rt]), "MB", TARGETS["rt_mem"])
+    jitter = [measure_jitter() for _ in range(args.runs)]
+    for topic in JITTER_TOPICS:
+        row("real time, %s arrival-interval error p50 / p99 / max" % topic,
+            " / ".join("%.1f" % median([j[topic][k] for j in jitter if topic in j])
+                       for k in range(3)), "ms", "each <= 5 ms of its moment")
     fast_all = median([measure_running(0, ALL_SENSORS)[0] for _ in range(args.runs)])
     row("as fast as possible, every sensor subscribed", "%.1f" % fast_all, "x",
         TARGETS["fast_all"])

@@ -1,29 +1,98 @@
 #!/usr/bin/env bash
 # Run the test suites in a shell where `source .catkin_ws/devel/setup.bash` was done.
 #   tools/run_tests.sh [unit|rostest|all]   (default all)
-# Ends with one summary line "tests: N passed, N failed" and exits non-zero if any failed.
+# unit: pytest under the venv's Python, again under Python 3.8 (.catkin_ws/venv38, made by
+# `tools/setup.sh --test` where a Python 3.8 exists; skipped with one line where not), and
+# every shell script checked by shellcheck (one test). rostest: every test/rostest/*.test.
+# Ends with one summary line "tests: N passed, N failed" (", N skipped" when some were) and
+# exits non-zero if any failed.
 set -uo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-cd "$ROOT"
+cd "$ROOT" || exit 2
 what=${1:-all}
 passed=0
 failed=0
+skipped=0
 results="$ROOT/.catkin_ws/test_results"
+VENV38="$ROOT/.catkin_ws/venv38"
 mkdir -p "$results"
 
-run_unit() {
-  echo "=== unit tests (pytest, no ROS master)"
-  local out="$results/pytest.txt"
-  python3 -m pytest -q -p no:cacheprovider test/unit --junitxml="$results/pytest-unit.xml" \
-    2>&1 | tee "$out"
+count() {
+  # count WORD LINE: the number before WORD in pytest's summary line, or 0.
+  local n
+  n=$(grep -oE "[0-9]+ $1" <<<"$2" | grep -oE '^[0-9]+' | head -n 1)
+  echo "${n:-0}"
+}
+
+run_pytest() {
+  # run_pytest LABEL PYTHON JUNIT_NAME
+  local label=$1 python=$2 junit=$3
+  echo "=== unit tests, $label (pytest, no ROS master)"
+  local out="$results/${junit%.xml}.txt"
+  # A module that fails to import counts as one error; the other modules still run.
+  "$python" -m pytest -q -p no:cacheprovider --continue-on-collection-errors test/unit \
+    --junitxml="$results/$junit" 2>&1 | tee "$out"
   local line
-  line=$(grep -E '^[=]* ?[0-9]+ (passed|failed)' "$out" | tail -n 1)
-  local p f e
-  p=$(grep -oE '[0-9]+ passed' <<<"$line" | grep -oE '[0-9]+' || echo 0)
-  f=$(grep -oE '[0-9]+ failed' <<<"$line" | grep -oE '[0-9]+' || echo 0)
-  e=$(grep -oE '[0-9]+ error' <<<"$line" | grep -oE '[0-9]+' || echo 0)
-  [ -n "$line" ] || f=1   # pytest did not even report: count it as a failure
-  passed=$((passed + p)); failed=$((failed + f + e))
+  line=$(grep -E '^[=]* ?[0-9]+ (passed|failed|skipped|errors?)\b' "$out" | tail -n 1)
+  local p f e s
+  p=$(count passed "$line"); f=$(count failed "$line"); e=$(count error "$line")
+  s=$(count skipped "$line")
+  if [ -z "$line" ] || [ $((p + f + e)) -eq 0 ]; then
+    echo "pytest ($label) reported no result: counted as a failure"
+    f=$((f + 1))
+  fi
+  passed=$((passed + p)); failed=$((failed + f + e)); skipped=$((skipped + s))
+}
+
+run_unit() {
+  run_pytest "$(python3 -c 'import sys; print("Python %d.%d" % sys.version_info[:2])')" \
+    python3 pytest-unit.xml
+}
+
+run_unit38() {
+  if [ -f "$VENV38/.tutorial_turtlebot-stamp" ]; then
+    run_pytest "Python 3.8 ($VENV38)" "$VENV38/bin/python3" pytest-unit-py38.xml
+  elif [ -f "$ROOT/.catkin_ws/venv38.skipped" ]; then
+    echo "=== unit tests, Python 3.8: skipped, $(cat "$ROOT/.catkin_ws/venv38.skipped")"
+  else
+    echo "=== unit tests, Python 3.8: skipped, no $VENV38 (tools/setup.sh --test makes it; make test runs that)"
+  fi
+}
+
+shell_scripts() {
+  # Every shell script of the repository: by shebang, or by name (*.sh, *.sh.in).
+  local f
+  while IFS= read -r -d '' f; do
+    if [[ "$f" == *.sh || "$f" == *.sh.in ]] \
+       || head -n 1 "$f" 2>/dev/null | grep -qE '^#!.*\b(ba|da|k)?sh\b'; then
+      printf '%s\n' "$f"
+    fi
+  done < <(find . \( -path ./.catkin_ws -o -path ./.git \) -prune -o -type f -print0 | sort -z)
+}
+
+run_shellcheck() {
+  echo "=== shellcheck (every shell script, one test)"
+  if ! command -v shellcheck >/dev/null; then
+    echo "shellcheck: skipped, not installed (tools/setup.sh installs it)"
+    skipped=$((skipped + 1))
+    return
+  fi
+  local f ok=1 n=0
+  while IFS= read -r f; do
+    n=$((n + 1))
+    if head -n 1 "$f" | grep -q '^#!'; then
+      shellcheck "$f" || ok=0
+    else
+      shellcheck --shell=sh "$f" || ok=0   # sourced fragments (catkin env hooks: SHELLS sh)
+    fi
+  done < <(shell_scripts)
+  if [ "$ok" = 1 ] && [ "$n" -gt 0 ]; then
+    echo "shellcheck: $n scripts clean"
+    passed=$((passed + 1))
+  else
+    echo "shellcheck: findings above ($n scripts checked)"
+    failed=$((failed + 1))
+  fi
 }
 
 run_rostests() {
@@ -47,10 +116,14 @@ run_rostests() {
 }
 
 case "$what" in
-  unit) run_unit ;;
+  unit) run_unit; run_unit38; run_shellcheck ;;
   rostest) run_rostests ;;
-  all) run_unit; run_rostests ;;
+  all) run_unit; run_unit38; run_shellcheck; run_rostests ;;
   *) echo "usage: tools/run_tests.sh [unit|rostest|all]" >&2; exit 2 ;;
 esac
-echo "tests: $passed passed, $failed failed"
+if [ "$skipped" -gt 0 ]; then
+  echo "tests: $passed passed, $failed failed, $skipped skipped"
+else
+  echo "tests: $passed passed, $failed failed"
+fi
 [ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]

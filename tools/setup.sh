@@ -1,78 +1,244 @@
 #!/usr/bin/env bash
 # Set up everything tutorial_turtlebot needs, idempotently: system packages, the Python venv
-# (Debian's rospy + PyPI's pybullet and numpy>=2) and the catkin workspace .catkin_ws/.
-# Usage: tools/setup.sh               (what `make demo` and `make test` run first)
+# (the system's rospy + PyPI's pybullet and numpy) and the catkin workspace .catkin_ws/.
+# Usage: tools/setup.sh               (what `make demo` runs first)
+#        tools/setup.sh --test        (the same plus the Python 3.8 venv for the unit tests:
+#                                      what `make test` runs first)
 #        tools/setup.sh --deps-only   (packages and venv only: for use from your own
 #                                      ~/catkin_ws, see README)
-# Uses /opt/ros/noetic where it exists (Ubuntu 20.04), Debian's ROS packages in /usr otherwise.
+# What to install is decided first, before anything is installed, by tools/setup_plan.py
+# (`python3 tools/setup_plan.py` shows it): Debian's ROS 1 packages in /usr on Debian 12+ and
+# Ubuntu 22.04+, ROS Noetic's own packages where /opt/ros/noetic exists; anything else is
+# refused with one line saying what is needed.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 WS="$ROOT/.catkin_ws"
 VENV="$WS/venv"
-NOETIC=/opt/ros/noetic/setup.bash
-PYBULLET_VERSION=3.2.7
+VENV38="$WS/venv38"
+SYS_PYTHON=/usr/bin/python3
+STAMP_NAME=.tutorial_turtlebot-stamp
 
 say() { printf '[setup] %s\n' "$*"; }
 fail() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
 
-if [ "$(id -u)" -eq 0 ]; then SUDO=(); else SUDO=(sudo); fi
+mode=${1:-}
+case "$mode" in
+  ""|--test|--deps-only) ;;
+  *) fail "usage: tools/setup.sh [--test|--deps-only]" ;;
+esac
 
-debian_packages() {
-  if [ -f "$NOETIC" ]; then
-    echo ros-noetic-ros-base ros-noetic-robot-state-publisher ros-noetic-tf2-ros \
-         ros-noetic-rostest ros-noetic-image-view ros-noetic-rviz python3-venv python3-pip python3-pytest \
-         python3-pil libegl1 libgl1-mesa-dri build-essential cmake
-  else
-    echo ros-core python3-rospy python3-roslaunch python3-rostest librostest-dev rosbash catkin \
-         python3-catkin-pkg python3-geometry-msgs python3-sensor-msgs python3-nav-msgs \
-         python3-std-srvs python3-rosgraph-msgs python3-tf2-ros python3-tf2-msgs \
-         ros-robot-state-publisher python3-venv python3-pip python3-pytest \
-         python3-pil libegl1 libgl1-mesa-dri ros-image-view rviz \
-         libgeometry-msgs-dev libnav-msgs-dev libsensor-msgs-dev \
-         build-essential cmake ignition-tools libsdformat-dev
+if [ "$(id -u)" -eq 0 ]; then
+  SUDO=()
+elif command -v sudo >/dev/null; then
+  SUDO=(sudo)
+else
+  SUDO=(false)   # fails at the first install with the message below
+fi
+
+apt_run() {
+  # apt-get through sudo where needed; its output goes to a log shown only when it fails.
+  local log="${TMPDIR:-/tmp}/tutorial_turtlebot-apt.$$.log"
+  if [ "${SUDO[0]:-}" = false ]; then
+    fail "not root and no sudo: run as root, or install sudo, to let the set-up use apt-get"
+  fi
+  if ! "${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get "$@" >"$log" 2>&1; then
+    tail -n 20 "$log" >&2
+    rm -f "$log"
+    fail "apt-get $1 failed (its last lines are above)"
+  fi
+  rm -f "$log"
+}
+
+# --- the plan ------------------------------------------------------------------------------------
+
+if [ ! -x "$SYS_PYTHON" ]; then
+  # The plan is a Python program; a bare container may lack Python itself.
+  command -v apt-get >/dev/null \
+    || fail "no $SYS_PYTHON and no apt-get: tools/setup.sh needs Debian 12+, Ubuntu 22.04+, or Ubuntu 20.04 with ROS Noetic"
+  say "installing python3 (the set-up's plan is a Python program)"
+  apt_run update -qq
+  apt_run install -y -qq --no-install-recommends python3
+fi
+
+APT_UPDATED=0
+has_candidate() {
+  [[ "$(apt-cache policy "$1" 2>/dev/null || true)" == *"Candidate: "[0-9]* ]]
+}
+# TUTORIAL_TURTLEBOT_PLAN_ARGS: setup_plan.py options that pretend to be another machine
+# (--os-release FILE --noetic yes|no --python X.Y ...): for the tests of the refusals.
+read -r -a PLAN_ARGS <<<"${TUTORIAL_TURTLEBOT_PLAN_ARGS:-}"
+plan() { "$SYS_PYTHON" "$ROOT/tools/setup_plan.py" --shell "${PLAN_ARGS[@]}" "$@"; }
+PLAN_OUTPUT=$(plan) || exit 1    # a refusal: setup_plan.py said why, in one line
+eval "$PLAN_OUTPUT"
+if [ "$PLAN_APT_UPDATE_FIRST" = 1 ]; then
+  # apt has no package lists yet, so whether it offers ROS 1 is not known: read them, ask again.
+  say "reading apt's package lists (apt-get update)"
+  apt_run update -qq
+  APT_UPDATED=1
+  PLAN_OUTPUT=$(plan --ros1-apt "$(has_candidate python3-rospy && echo yes || echo no)") \
+    || exit 1
+  eval "$PLAN_OUTPUT"
+fi
+say "platform: $PLAN_PLATFORM"
+if [ -n "$PLAN_NOTES" ]; then
+  while IFS= read -r note; do say "note: $note"; done <<<"$PLAN_NOTES"
+fi
+if [ -n "$PLAN_ROS_SETUP" ]; then
+  # Before any check: Noetic's rospy is only on PYTHONPATH once this is sourced.
+  set +eu
+  # shellcheck disable=SC1090
+  source "$PLAN_ROS_SETUP"
+  set -eu
+fi
+
+# --- system packages -----------------------------------------------------------------------------
+
+not_installed() {
+  # The packages among "$@" that dpkg does not have installed.
+  local installed
+  installed=$(dpkg-query -W -f='${Package} ${Status}\n' "$@" 2>/dev/null \
+                | awk '/ install ok installed$/ {print $1}' || true)
+  local pkg
+  for pkg in "$@"; do
+    grep -qxF "$pkg" <<<"$installed" || printf '%s\n' "$pkg"
+  done
+}
+
+without_unavailable_optional() {
+  # "$@" less the optional packages that the apt sources do not offer (one line says so).
+  local pkg skipped=()
+  for pkg in "$@"; do
+    if [[ " $PLAN_APT_OPTIONAL " == *" $pkg "* ]] && ! has_candidate "$pkg"; then
+      skipped+=("$pkg")
+    else
+      printf '%s\n' "$pkg"
+    fi
+  done
+  if [ ${#skipped[@]} -gt 0 ]; then
+    say "not offered by this system's apt sources, skipped: ${skipped[*]}" >&2
   fi
 }
 
 install_system() {
-  local missing=()
-  for pkg in $(debian_packages); do
-    dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" \
-      || missing+=("$pkg")
-  done
-  if [ ${#missing[@]} -eq 0 ]; then
-    say "system packages: all present"
+  local missing=() wanted=()
+  # shellcheck disable=SC2086  # PLAN_APT is a list of package names
+  mapfile -t missing < <(not_installed $PLAN_APT)
+  if [ ${#missing[@]} -gt 0 ]; then
+    mapfile -t wanted < <(without_unavailable_optional "${missing[@]}" 2>/dev/null)
+  fi
+  if [ ${#wanted[@]} -eq 0 ]; then
+    say "system packages: all present${missing[*]:+ (not offered here: ${missing[*]})}"
     return
   fi
-  command -v apt-get >/dev/null || fail "apt-get not found; install by hand: ${missing[*]}"
-  say "installing system packages: ${missing[*]}"
-  "${SUDO[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${SUDO[@]}" apt-get install -y -qq --no-install-recommends \
-    "${missing[@]}" >/dev/null
+  [ "$APT_UPDATED" = 1 ] || apt_run update -qq
+  APT_UPDATED=1
+  mapfile -t wanted < <(without_unavailable_optional "${missing[@]}")
+  say "installing system packages: ${wanted[*]}"
+  apt_run install -y -qq --no-install-recommends "${wanted[@]}"
 }
 
+# --- the Python venvs ----------------------------------------------------------------------------
+
+venv_ready() {
+  # venv_ready VENV STAMP CHECK: stamped for this plan, and the import check passes.
+  [ -f "$1/$STAMP_NAME" ] && [ "$(cat "$1/$STAMP_NAME")" = "$2" ] \
+    && "$1/bin/python3" -c "$3" >/dev/null 2>&1
+}
+
+venv_base() {
+  # venv_base VENV PYTHON [venv options]: a venv with a working pip, made anew only if needed.
+  local venv=$1 python=$2
+  shift 2
+  if "$venv/bin/python3" -m pip --version >/dev/null 2>&1 \
+     && [ "$("$venv/bin/python3" -c 'import sys; print(sys.version_info[:2])')" \
+          = "$("$python" -c 'import sys; print(sys.version_info[:2])')" ]; then
+    return
+  fi
+  mkdir -p "$(dirname "$venv")"
+  "$python" -m venv --clear "$@" "$venv" || fail "$python -m venv $venv failed"
+}
+
+pip_install() {
+  local venv=$1
+  shift
+  "$venv/bin/python3" -m pip install -q --disable-pip-version-check "$@" \
+    || fail "pip install $* failed in $venv"
+}
+
+MAIN_CHECK='import rospy, pybullet, numpy
+assert pybullet.isNumpyEnabled(), "pybullet was built without numpy"'
+
 install_python() {
-  local stamp="$VENV/.tutorial_turtlebot-$PYBULLET_VERSION"
-  if [ -f "$stamp" ] && "$VENV/bin/python3" -c 'import rospy, pybullet, numpy' 2>/dev/null; then
+  if venv_ready "$VENV" "$PLAN_STAMP" "$MAIN_CHECK"; then
     say "python venv: ready ($VENV)"
     return
   fi
-  say "creating python venv $VENV (system site packages + pybullet $PYBULLET_VERSION)"
-  mkdir -p "$WS"
-  /usr/bin/python3 -m venv --system-site-packages --clear "$VENV"
-  local numpy="numpy>=2"
-  /usr/bin/python3 -c 'import sys; sys.exit(sys.version_info < (3, 9))' || numpy="numpy"
-  "$VENV/bin/python3" -m pip install -q --disable-pip-version-check \
-    "pybullet==$PYBULLET_VERSION" "$numpy"
-  "$VENV/bin/python3" -c 'import rospy, pybullet, numpy; assert pybullet.isNumpyEnabled(), "pybullet built without numpy"' \
-    || fail "the venv cannot import rospy, pybullet and numpy together"
-  touch "$stamp"
+  # No stamp until the check below passes: a run that fails half-way leaves a venv that the
+  # next run completes, never one it takes for ready.
+  rm -f "$VENV/$STAMP_NAME"
+  say "python venv $VENV: $PLAN_STAMP"
+  venv_base "$VENV" "$SYS_PYTHON" --system-site-packages
+  local first=() pkgs=() flags=()
+  read -r -a first <<<"$PLAN_PIP_FIRST"
+  read -r -a pkgs <<<"$PLAN_PIP"
+  read -r -a flags <<<"$PLAN_PIP_FLAGS"
+  [ ${#first[@]} -eq 0 ] || pip_install "$VENV" "${first[@]}"
+  if [ "$PLAN_PYBULLET" = source ]; then
+    say "building pybullet from source: about 5 minutes on 2 cores"
+  fi
+  pip_install "$VENV" "${flags[@]}" "${pkgs[@]}"
+  local error
+  if ! error=$("$VENV/bin/python3" -c "$MAIN_CHECK" 2>&1); then
+    fail "the venv cannot import rospy, pybullet and numpy together: $(tail -n 1 <<<"$error")"
+  fi
+  printf '%s\n' "$PLAN_STAMP" >"$VENV/$STAMP_NAME"
 }
+
+PY38_CHECK='import rospy, genpy, pybullet, numpy, pytest, yaml, PIL
+assert pybullet.isNumpyEnabled(), "pybullet was built without numpy"'
+
+install_python38() {
+  # make test also runs the unit tests under Python 3.8 (ROS Noetic's), where one exists.
+  local out
+  out=$("$SYS_PYTHON" "$ROOT/tools/setup_plan.py" --py38 --shell) || fail "setup_plan.py --py38 failed"
+  eval "$out"
+  if [ -z "$PY38_PYTHON" ]; then
+    say "python 3.8 venv: skipped, $PY38_SKIP"
+    printf '%s\n' "$PY38_SKIP" >"$WS/venv38.skipped"
+    return
+  fi
+  rm -f "$WS/venv38.skipped"
+  local stamp="python $PY38_PYTHON: pip install $PY38_PIP; .pth $PY38_PTH"
+  if venv_ready "$VENV38" "$stamp" "$PY38_CHECK"; then
+    say "python 3.8 venv: ready ($VENV38)"
+    return
+  fi
+  rm -f "$VENV38/$STAMP_NAME"
+  say "python 3.8 venv $VENV38: $PY38_PYTHON, $PY38_PIP"
+  venv_base "$VENV38" "$PY38_PYTHON"
+  local pkgs=()
+  read -r -a pkgs <<<"$PY38_PIP"
+  # Wheels only: the compiled modules must be built for 3.8, not taken from the system.
+  pip_install "$VENV38" --only-binary=:all: "${pkgs[@]}"
+  local site
+  site=$("$VENV38/bin/python3" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
+  # Appended to sys.path (after the venv's own packages): the system's pure-Python ROS modules.
+  printf '%s\n' "$PY38_PTH" >"$site/tutorial_turtlebot_system_ros.pth"
+  local error
+  if ! error=$("$VENV38/bin/python3" -c "$PY38_CHECK" 2>&1); then
+    fail "the python 3.8 venv cannot import what the unit tests need: $(tail -n 1 <<<"$error")"
+  fi
+  printf '%s\n' "$stamp" >"$VENV38/$STAMP_NAME"
+}
+
+# --- the catkin workspace ------------------------------------------------------------------------
 
 link_package() {
   # The workspace's copy of the package: a folder of links to the repository's entries, all
   # but .catkin_ws itself (a link to the whole repository would let rosrun find every script
-  # a second time inside .catkin_ws and refuse to pick).
+  # a second time inside .catkin_ws and refuse to pick). catkin and rospack stop at its
+  # package.xml, so msgs/gazebo_msgs inside it is not found a second time.
   local pkg="$WS/src/tutorial_turtlebot" entry
   [ -L "$pkg" ] && rm "$pkg"
   mkdir -p "$pkg"
@@ -83,10 +249,30 @@ link_package() {
   done
 }
 
+link_stand_ins() {
+  # Packages the repository carries for systems that lack them (Debian's and Ubuntu's ROS 1):
+  # msgs/gazebo_msgs (the messages, built by catkin_make) and ros_shims/* (manifests for
+  # Debian's manifest-less Python packages). Linked into the workspace's src/ there; on Noetic,
+  # whose own packages are installed instead, links left from before are removed.
+  local dir name link
+  for dir in "$ROOT"/msgs/*/ "$ROOT"/ros_shims/*/; do
+    [ -f "$dir/package.xml" ] || continue
+    dir=${dir%/}
+    name=$(basename "$dir")
+    link="$WS/src/$name"
+    if [ "$PLAN_GAZEBO_MSGS" = repo ]; then
+      ln -sfn "$dir" "$link"
+    elif [ -L "$link" ]; then
+      rm "$link"
+    fi
+  done
+  # links whose package was removed from the repository
+  find "$WS/src" -maxdepth 1 -type l ! -name tutorial_turtlebot ! -exec test -e {} \; -delete
+}
+
 build_workspace() {
   link_package
-  # shellcheck disable=SC1090
-  if [ -f "$NOETIC" ]; then set +u; source "$NOETIC"; set -u; fi
+  link_stand_ins
   say "building catkin workspace $WS"
   local log="$WS/build.log"
   if ! catkin_make -C "$WS" -DPYTHON_EXECUTABLE="$VENV/bin/python3" \
@@ -96,10 +282,32 @@ build_workspace() {
   fi
 }
 
-case "${1:-}" in
-  --deps-only) install_system; install_python
+deps_only_hint() {
+  # From your own ~/catkin_ws/src: the stand-ins (gazebo_msgs, ...) must sit beside the package
+  # to be found; linked there when the clone is in a src/ folder, else the line says how.
+  [ "$PLAN_GAZEBO_MSGS" = repo ] || return 0
+  local src dir name
+  src=$(dirname "$ROOT")
+  for dir in "$ROOT"/msgs/*/ "$ROOT"/ros_shims/*/; do
+    [ -f "$dir/package.xml" ] || continue
+    dir=${dir%/}
+    name=$(basename "$dir")
+    if [ -e "$src/$name" ] || [ -L "$src/$name" ]; then
+      continue
+    elif [ "$(basename "$src")" = src ]; then
+      ln -s "$(basename "$ROOT")/${dir#"$ROOT"/}" "$src/$name"
+      say "linked $src/$name -> $(basename "$ROOT")/${dir#"$ROOT"/} (this system has no $name)"
+    else
+      say "this system has no $name: link it into your workspace's src/: ln -s $dir ~/catkin_ws/src/$name"
+    fi
+  done
+}
+
+case "$mode" in
+  --deps-only) install_system; install_python; deps_only_hint
                say "done: packages and $VENV ready; build your workspace as the README says" ;;
+  --test) install_system; install_python; install_python38; build_workspace
+          say "done: run 'source $WS/devel/setup.bash' for a shell with rosrun/roslaunch/rostest" ;;
   "") install_system; install_python; build_workspace
       say "done: run 'source $WS/devel/setup.bash' for a shell with rosrun/roslaunch/rostest" ;;
-  *) fail "usage: tools/setup.sh [--deps-only]" ;;
 esac

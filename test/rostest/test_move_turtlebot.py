@@ -115,6 +115,23 @@ class MoveTurtlebotTest(unittest.TestCase):
         self.assertLess(abs(yaw_of(end.pose.pose.orientation) - yaw_of(rest.pose.pose.orientation)),
                         0.01)
 
+    def test_3_command_line_settings_last_one_run(self):
+        """``_duration:=2 _rate:=5`` hold for that run: it stops by itself after 2 s of sim time,
+        and nothing is left on the parameter server, so a plain run after it goes on."""
+        node = NodeProcess("move_turtlebot", "0.1", "0", "_duration:=2", "_rate:=5")
+        status = node.wait(WAIT)
+        self.assertEqual(status, 0, "move_turtlebot _duration:=2 did not end by itself: %s%s"
+                         % (node.stdout, node.stderr))
+        self.assertIn("2 s done", node.stdout + node.stderr)
+        for name in ("/move_turtlebot/duration", "/move_turtlebot/rate"):
+            self.assertFalse(rospy.has_param(name), "%s outlived the run" % name)
+        plain = NodeProcess("move_turtlebot", "0", "0")
+        try:
+            self.assertIsNone(plain.wait(8.0), "the next plain run stopped on its own: %s%s"
+                              % (plain.stdout, plain.stderr))
+        finally:
+            plain.interrupt(20.0)
+
     def test_2_bad_arguments_usage_and_status_2(self):
         env = dict(os.environ, ROS_MASTER_URI="http://localhost:9")  # no master there
         for args in ((), ("0.2",), ("0.2", "0.5", "7"), ("fast", "0.5"), ("0.2", "nan")):

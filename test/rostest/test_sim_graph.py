@@ -5,6 +5,7 @@ Topics, types and publisher, message fields and frames, /clock, the spawn pose i
 scan against the arena's geometry (tb3_facts 4.2), the IMU at rest and the whole TF tree.
 """
 import math
+import time
 import unittest
 
 import numpy as np
@@ -76,6 +77,24 @@ class SimGraphTest(unittest.TestCase):
         first = self.clock.latest().clock
         self.assertTrue(wait_for(lambda: self.clock.latest().clock.to_sec()
                                  > first.to_sec() + 0.5, 10.0), "/clock does not advance")
+
+    def test_odom_arrives_when_due_not_in_bursts(self):
+        """At real time each /odom leaves when its stamp is due on the wall clock: the gap
+        between two arrivals matches the gap between their stamps (median within 4 ms). Sent
+        in 20 ms bursts they would be off by 7 to 13 ms."""
+        arrivals = []
+        sub = rospy.Subscriber("odom", Odometry, lambda m: arrivals.append(
+            (time.monotonic(), m.header.stamp.to_sec())), queue_size=100)
+        try:
+            self.assertTrue(wait_for(lambda: len(arrivals) > 90, 30.0), "too few /odom")
+        finally:
+            sub.unregister()
+        errors = sorted(abs((a1 - a0) - (s1 - s0)) for (a0, s0), (a1, s1)
+                        in zip(arrivals[1:], arrivals[2:]))  # the first may have queued
+        median = errors[len(errors) // 2]
+        rospy.loginfo("/odom arrival-interval error: median %.1f ms, max %.1f ms",
+                      1000 * median, 1000 * errors[-1])
+        self.assertLess(median, 0.004)
 
     def test_scan_fields(self):
         msg = self.scan.latest()

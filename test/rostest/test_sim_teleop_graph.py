@@ -29,8 +29,15 @@ class SimTeleopGraphTest(unittest.TestCase):
         cls.model = rospy.get_param("~model", "burger")
         launch = os.path.join(rospkg.RosPack().get_path("tutorial_turtlebot"), "launch",
                               "sim_teleop.launch")
-        cls.config = roslaunch.config.load_config_default(
-            [(launch, ["model:=%s" % cls.model])], None, verbose=False)
+        # Read as on a machine with no simulator yet: sim.launch's robot_description command
+        # (--new-sim) would refuse to describe a second sim beside the one this test runs.
+        master_uri = os.environ["ROS_MASTER_URI"]
+        os.environ["ROS_MASTER_URI"] = "http://localhost:9"
+        try:
+            cls.config = roslaunch.config.load_config_default(
+                [(launch, ["model:=%s" % cls.model])], None, verbose=False)
+        finally:
+            os.environ["ROS_MASTER_URI"] = master_uri
         cls.nodes = {rosgraph.names.ns_join(n.namespace, n.name): n for n in cls.config.nodes}
         teleop = cls.nodes.get(TELEOP)
         assert teleop is not None, "sim_teleop.launch declares no %s: %s" % (TELEOP,

@@ -7,7 +7,8 @@ import sys
 import pytest
 
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.lab.move_args import USAGE, parse, user_args, wants_help
+from tutorial_turtlebot.lab.move_args import (USAGE, command_line_settings, parse, user_args,
+                                           wants_help)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -74,3 +75,18 @@ def test_script_help():
     done = run_script("--help")
     assert done.returncode == 0
     assert done.stdout.strip() == USAGE
+
+
+def test_command_line_settings_are_taken_out_of_what_rospy_sees():
+    """``_name:=value`` arguments become this run's settings (YAML values, as rospy reads them)
+    and are left out of the arguments given to rospy, which would store them on the parameter
+    server for every later run; remappings and special names stay."""
+    settings, rest = command_line_settings(
+        ["move_turtlebot", "0.2", "0.5", "_duration:=3", "_rate:=2.5", "cmd_vel:=/x",
+         "__name:=mover", "_note:=hello"])
+    assert settings == {"duration": 3, "rate": 2.5, "note": "hello"}
+    assert rest == ["move_turtlebot", "0.2", "0.5", "cmd_vel:=/x", "__name:=mover"]
+
+
+def test_usage_names_the_settings():
+    assert "_duration:=S" in USAGE and "_rate:=HZ" in USAGE

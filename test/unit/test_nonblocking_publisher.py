@@ -190,3 +190,49 @@ def test_make_nonblocking_wraps_each_new_connection_once(pair):
     (connection,) = publisher.impl.connections
     assert isinstance(connection, NonBlockingConnection)
     assert connection._connection is transport
+
+
+def test_held_messages_leave_in_order_when_due(pair):
+    """Between hold() and keep_until(t) nothing is written; send_due(now) writes, in order, the
+    groups due by ``now`` and keeps the later ones."""
+    writer, reader = pair
+    backlog = Backlog()
+    connection = NonBlockingConnection(Transport(writer), backlog)
+    for group, due in ((range(0, 3), 10.0), (range(3, 5), 10.005), (range(5, 6), 10.010)):
+        backlog.hold()
+        for n in group:
+            connection.write_data(message(n, 300))
+        backlog.keep_until(due)
+    backlog.hold()
+    backlog.keep_until(10.020)  # nothing published: no group kept
+    assert read_frames(reader) == []
+    assert backlog.next_due() == 10.0
+    backlog.send_due(9.999)
+    assert read_frames(reader) == []
+    backlog.send_due(10.005)
+    assert read_frames(reader) == [0, 1, 2, 3, 4]
+    assert backlog.next_due() == 10.010
+    backlog.send_due()
+    assert read_frames(reader) == [5]
+    assert backlog.next_due() is None
+
+
+def test_a_kept_message_for_a_subscriber_that_went_away_closes_its_connection(pair):
+    writer, reader = pair
+    backlog = Backlog()
+    transport = Transport(writer)
+    connection = NonBlockingConnection(transport, backlog)
+    backlog.hold()
+    connection.write_data(message(1, 300))
+    backlog.keep_until(1.0)
+    reader.close()
+    for _ in range(10):  # the kernel may take the first writes after the peer closed
+        backlog.send_due()
+        if transport.done:
+            break
+        backlog.hold()
+        connection.write_data(message(2, 300))
+        backlog.keep_until(1.0)
+    assert transport.done
+    with pytest.raises(TransportTerminated):  # rospy then drops the connection
+        connection.write_data(message(3, 300))

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from tutorial_turtlebot.sim import robot_description
+from tutorial_turtlebot.gazebo import robot_description
 
 ROOT = Path(__file__).resolve().parents[2]
 URDF = ROOT / "urdf"

@@ -171,6 +171,51 @@ def test_default_sleeps_once_per_20_ms_of_steps():
     assert 1.0 - Pacer.MIN_SLEEP < clock.now - 100.0 <= 1.0
 
 
+def test_wall_of_and_sleep_until_send_each_moment_on_time():
+    """What the sim made ahead leaves when due: wall_of maps sim time to the clock (at factor 2,
+    sim 1.0 s is wall 0.5 s after the anchor) and sleep_until sleeps exactly there, never for
+    less than SHORTEST_SLEEP."""
+    clock = FakeClock()
+    pacer = Pacer(2.0, clock=clock, sleep=clock.sleep)
+    assert pacer.wall_of(1.0) == pytest.approx(100.5)
+    pacer.sleep_until(pacer.wall_of(0.01))
+    assert clock.now == pytest.approx(100.005)
+    pacer.sleep_until(clock.now + Pacer.SHORTEST_SLEEP / 2)
+    assert clock.sleeps == [pytest.approx(0.005)]
+    pacer.sleep_until(clock.now - 1.0)  # in the past: no sleep
+    assert len(clock.sleeps) == 1
+
+
+def test_ahead_forgives_a_large_debt():
+    """ahead() is how far sim time runs ahead of the clock; far behind (a stall) the pacer
+    re-anchors at the present instead of racing to catch up; at factor 0 it is always 0."""
+    clock = FakeClock()
+    pacer = Pacer(1.0, clock=clock, sleep=clock.sleep)
+    assert pacer.ahead(0.015) == pytest.approx(0.015)
+    clock.now += 0.1
+    assert pacer.ahead(0.015) == pytest.approx(-0.085)
+    clock.now += 1.0
+    assert pacer.ahead(0.015) == 0.0
+    assert pacer.wall_of(0.025) == pytest.approx(clock.now + 0.01)
+    assert Pacer(0.0, clock=clock, sleep=clock.sleep).ahead(5.0) == 0.0
+
+
+def test_set_rtf_changes_the_factor_from_now_on():
+    """set_physics_properties' max_update_rate: a new factor, anchored at the present; 0 stops
+    all sleeping, and a bad factor is refused."""
+    clock = FakeClock()
+    pacer = Pacer(1.0, clock=clock, sleep=clock.sleep)
+    clock.now += 0.5
+    pacer.set_rtf(4.0, 0.5)
+    assert pacer.wall_of(1.5) == pytest.approx(clock.now + 0.25)
+    pacer.set_rtf(0.0, 1.0)
+    assert pacer.ahead(100.0) == 0.0
+    pacer.wait(100.0)
+    assert clock.sleeps == []
+    with pytest.raises(ValueError):
+        pacer.set_rtf(-1.0, 1.0)
+
+
 def test_rtf_2_takes_half_the_wall_time():
     """At factor 2, 1 s of sim takes 0.5 s of wall."""
     pacer, clock = make(2.0)

@@ -159,3 +159,12 @@ def test_banner_again_every_15_status_lines():
 def test_other_keys_print_nothing():
     t = teleop()
     assert [t.step(key).text for key in ("i", "k", "a", None)] == [None] * 4
+
+
+def test_status_shows_three_significant_digits():
+    """Five presses of q on a burger: turn 1 x 1.1^5 = 1.61051 shows as 1.61 (speed stops at the
+    burger's 0.22 m/s)."""
+    t = teleop("burger")
+    for _ in range(5):
+        run(t, ["q"])
+    assert t.status() == "currently:\tspeed 0.22\tturn 1.61"

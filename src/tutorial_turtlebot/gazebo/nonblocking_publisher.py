@@ -12,8 +12,15 @@ full, the unsent rest of the current message is kept (the byte stream stays whol
 newest message, so a slow subscriber loses old messages, as with rospy's ``queue_size=1``,
 and never slows the others or the simulation. ``Backlog.flush()`` retries the kept bytes;
 the simulation loop calls it while anything is waiting.
+
+Between ``Backlog.hold()`` and ``Backlog.keep_until(t)`` messages are serialized but not
+written: they leave, in order, when ``send_due`` is called at wall time ``t`` or later. So the
+simulation makes a step's messages as soon as it has stepped, and sends them when their stamps
+are due on the wall clock, however long making them took.
 """
+import collections
 import errno
+import math
 import socket
 import threading
 from typing import Optional
@@ -29,9 +36,36 @@ class Backlog:
     def __init__(self):
         self._lock = threading.Lock()
         self._waiting = set()
+        self.held = None  # [(connection, bytes)] while holding, else None
+        self._due = collections.deque()  # (wall time, [(connection, bytes)]), in time order
 
     def __bool__(self) -> bool:
         return bool(self._waiting)
+
+    def hold(self) -> None:
+        """Keep what is published from now on, in order, until keep_until()."""
+        self.held = []
+
+    def keep_until(self, wall_time: float) -> None:
+        """Stop holding; what was held leaves at ``wall_time`` (see send_due)."""
+        if self.held:
+            self._due.append((wall_time, self.held))
+        self.held = None
+
+    def next_due(self) -> Optional[float]:
+        """Wall time of the first kept group of messages, None if none is kept."""
+        return self._due[0][0] if self._due else None
+
+    def send_due(self, now: float = math.inf) -> None:
+        """Send, in order, the kept groups due at ``now`` or before (all by default). A
+        subscriber that went away meanwhile is closed; rospy drops it at its next publish."""
+        while self._due and self._due[0][0] <= now:
+            for connection, data in self._due.popleft()[1]:
+                try:
+                    connection.write_data(data)
+                except TransportTerminated:
+                    if not connection.done:
+                        connection.close()
 
     def add(self, connection: "NonBlockingConnection") -> None:
         with self._lock:
@@ -67,6 +101,12 @@ class NonBlockingConnection:
     def write_data(self, data: bytes) -> bool:
         """Send one serialized message or keep it for later; never blocks. Raises
         TransportTerminated once the subscriber has gone (rospy then drops the connection)."""
+        held = self._backlog.held
+        if held is not None:  # the loop sends it when its moment is due: release()
+            if self._connection.done:
+                raise TransportTerminated("connection closed")
+            held.append((self, data))
+            return True
         with self._lock:
             if self._connection.done:
                 raise TransportTerminated("connection closed")
@@ -143,5 +183,13 @@ def make_nonblocking(publisher, backlog: Backlog) -> None:
     add_connection = impl.add_connection
 
     def add_nonblocking_connection(connection):
+        sock = getattr(connection, "socket", None)
+        if sock is not None:
+            # Each message leaves when it is written: without this, Nagle's algorithm holds a
+            # small message back until the last one is acknowledged, tens of ms with delayed ACKs.
+            try:
+                sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+            except OSError:
+                pass  # not a TCP socket (a test's socket pair)
         return add_connection(NonBlockingConnection(connection, backlog))
     impl.add_connection = add_nonblocking_connection

@@ -26,6 +26,9 @@ Parameters (private):
   ~camera (model's)           simulate the camera: waffle, waffle_pi by default; true on a
                               burger gives the AutoRace burger's pitched 320x240 camera
   ~lidar_model (gazebo)       gazebo (+inf no return) or lds01 (the real driver: 0.0)
+  ~lidar_samples (360)        rays per scan over the same sweep (the stages' DQN agent: 24)
+  ~robot_name (empty)         the robot's model name; empty = turtlebot3_gazebo's for the world
+  ~model_states_rate (100.0)  Hz of sim time of ~model_states, ~link_states (see world_api)
   ~odom_source (world)        world (ground truth from the spawn pose) or encoders (from 0)
   ~clamp_cmd_vel (true)       hold cmd_vel to the model's limits, as the real firmware does
   ~gui (false)                open pybullet's 3D window (only where a display exists)
@@ -44,6 +47,7 @@ import sys
 import threading
 import time
 
+import rosgraph.names
 import rospy
 import rospy.impl.simtime
 import tf2_ros
@@ -55,12 +59,15 @@ from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
 from .camera_publisher import CameraPublisher
+from .world_api import WorldApi
 from ..errors import UserError
 from ..sim.kinematics import yaw_from_quat
 from .nonblocking_publisher import Backlog, make_nonblocking
 from ..sim.pacing import Pacer
+from .single_instance import refuse_if_running
 from ..sim.physics import WHEEL_JOINTS
 from ..sim.simulation import SimConfig, Simulation
+from ..sim.world_sdf import world_from_command_line
 
 # Gazebo diff-drive plugin's pose covariance diagonal (x, y, z, roll, pitch, yaw).
 POSE_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
@@ -94,13 +101,15 @@ def read_config() -> SimConfig:
     """The SimConfig named by the node's private params (raises UserError when one is bad)."""
     return SimConfig(
         model=_param("model", "burger", str),
-        world=_param("world", "turtlebot3_world", str),
+        world=world_from_command_line(_param("world", "turtlebot3_world", str)),
         x=_param("x_pos", None, float, allow_empty=True),
         y=_param("y_pos", None, float, allow_empty=True),
         z=_param("z_pos", 0.0, float),
         yaw=_param("yaw", None, float, allow_empty=True),
         camera=_param("camera", None, bool, allow_empty=True),
         lidar_model=_param("lidar_model", "gazebo", str),
+        lidar_samples=_param("lidar_samples", 360, int),
+        robot_name=_param("robot_name", None, str, allow_empty=True),
         odom_source=_param("odom_source", "world", str),
         clamp_cmd_vel=_param("clamp_cmd_vel", True, bool),
         gui=_param("gui", False, bool),
@@ -146,6 +155,8 @@ class SimNode:
                              ("reset_world", sim.reset_world),
                              ("pause_physics", self._pause), ("unpause_physics", self._unpause)):
             rospy.Service("~" + name, Empty, self._service_handler(name, action))
+        # Gazebo's world API: model/link states, spawn, delete, physics (gazebo/world_api.py).
+        self.world_api = WorldApi(self, _param("model_states_rate", 100.0, float))
 
     def _publisher(self, topic, msg_type, queue_size=1) -> rospy.Publisher:
         publisher = rospy.Publisher(topic, msg_type, queue_size=queue_size)
@@ -269,20 +280,25 @@ class SimNode:
 
     def _unpause(self) -> None:
         self.paused = False
+        self.pacer.restart(self.sim.time)  # paused time is not owed
 
     def _handle_requests(self) -> None:
+        """Run the requests queued by service and topic callbacks, between two steps."""
         while not self._requests.empty():
             action, done = self._requests.get()
+            before = self.sim.time_ns
             action()
             done.set()
-            self.pacer.restart(self.sim.time)
-            self._publish_due(["clock"])  # let everyone see a reset time at once
+            if self.sim.time_ns != before:  # reset_simulation: everyone sees the new time now
+                self.backlog.send_due()      # after what was made before it
+                self.pacer.restart(self.sim.time)
+                self._publish_due(["clock"])
 
     # --- loop ------------------------------------------------------------------------------------
 
     def spin(self) -> None:
         """Step, publish and pace until ROS shuts down."""
-        sim, pacer = self.sim, self.pacer
+        sim, pacer, backlog = self.sim, self.pacer, self.backlog
         pacer.restart(sim.time)
         self._publish_due(["clock"])
         next_status = time.monotonic() + self.status_period
@@ -299,9 +315,13 @@ class SimNode:
                     self._log_status()
             if not self._requests.empty():
                 self._handle_requests()
-            if self.backlog:
-                self.backlog.flush()
+            if backlog:
+                backlog.flush()
+            paced = pacer.rtf > 0  # set_physics_properties may change it at any request
+            if backlog.next_due() is not None:
+                backlog.send_due(time.monotonic() if paced else math.inf)
             if self.paused:
+                backlog.send_due()
                 self._wake.wait(0.1)
                 self._wake.clear()
                 pacer.restart(sim.time)
@@ -309,8 +329,28 @@ class SimNode:
             command, self._command = self._command, None
             if command is not None:
                 self._apply_command(*command)
-            self._publish_due(sim.step())
-            pacer.wait(sim.time)
+            due = sim.step()
+            if not paced:
+                self._publish_due(due)
+                continue
+            if due:  # made now, sent when due on the wall clock
+                backlog.hold()
+                self._publish_due(due)
+                backlog.keep_until(pacer.wall_of(sim.time))
+            if pacer.ahead(sim.time) >= pacer.MIN_SLEEP:
+                self._send_on_time_until(pacer.wall_of(sim.time))
+
+    def _send_on_time_until(self, wall_time: float) -> None:
+        """Sleep until ``wall_time`` (the clock), sending each kept group of messages at its
+        moment on the way: physics runs in batches, messages leave when their stamps are due."""
+        pacer, backlog = self.pacer, self.backlog
+        while True:
+            next_due = backlog.next_due()
+            if next_due is None or next_due >= wall_time:
+                break
+            pacer.sleep_until(next_due)
+            backlog.send_due(next_due)
+        pacer.sleep_until(wall_time)
 
     def _apply_command(self, linear: float, angular: float) -> None:
         problems = self.sim.command(linear, angular)
@@ -338,6 +378,12 @@ def _own_the_clock() -> None:
 
 def main() -> None:
     """Entry point of ``scripts/sim``."""
+    # A second /gazebo would make the master shut the running one down: look before registering.
+    try:
+        refuse_if_running(rosgraph.names.ns_join(rospy.names.get_namespace(), "gazebo"))
+    except UserError as err:
+        sys.stderr.write("gazebo: %s\n" % err)
+        sys.exit(2)
     # rospy's own SIGINT handler shuts ROS down from inside whatever the loop is doing (often a
     # publish, holding its locks) and could hang there; here the signal only asks the loop to
     # stop, and the loop shuts ROS down when it is between steps.

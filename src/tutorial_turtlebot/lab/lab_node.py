@@ -26,10 +26,12 @@ def fatal(message: str) -> None:
 
 
 def number_param(name: str, default: float, unit: str, above: Optional[float] = None,
-                 at_least: Optional[float] = None, at_most: Optional[float] = None) -> float:
-    """The parameter ``name`` as a float, or a fatal error unless it is a finite number with
-    ``value > above``, ``value >= at_least`` and ``value <= at_most`` (where given)."""
-    value = rospy.get_param(name, default)
+                 at_least: Optional[float] = None, at_most: Optional[float] = None,
+                 given: Optional[object] = None) -> float:
+    """The parameter ``name`` (or the value ``given`` for it on the command line) as a float,
+    or a fatal error unless it is a finite number with ``value > above``, ``value >= at_least``
+    and ``value <= at_most`` (where given)."""
+    value = rospy.get_param(name, default) if given is None else given
     bounds = []
     if above is not None:
         bounds.append("> %g" % above)

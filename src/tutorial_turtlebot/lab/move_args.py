@@ -1,19 +1,41 @@
 """Command line of ``move_turtlebot LINEAR ANGULAR`` (no rospy here)."""
 import math
-from typing import List, Sequence, Tuple
+from typing import Dict, List, Sequence, Tuple
+
+import yaml
 
 from rosgraph.names import is_legal_remap
 
 from ..errors import UserError
 
-USAGE = ("usage: move_turtlebot LINEAR ANGULAR   "
-         "(m/s forward, rad/s counter-clockwise; e.g. move_turtlebot 0.2 0.5)")
+USAGE = ("usage: move_turtlebot LINEAR ANGULAR [_rate:=HZ] [_duration:=S]   (m/s forward, "
+         "rad/s counter-clockwise; publish at HZ, default 10; stop after S s of ROS time, "
+         "default 0 = at Ctrl-C; e.g. move_turtlebot 0.2 0.5 _duration:=5)")
+SETTINGS = ("rate", "duration")  # the private parameters move_turtlebot reads
 
 
 def user_args(argv: Sequence[str]) -> List[str]:
     """``argv`` (without the program name) less ROS's own arguments: remappings such as
     ``cmd_vel:=x``, ``__name:=y``, ``_rate:=5``, as rospy.myargv drops them."""
     return [arg for arg in argv if not is_legal_remap(arg)]
+
+
+def command_line_settings(argv: Sequence[str]) -> Tuple[Dict[str, object], List[str]]:
+    """The ``_name:=value`` arguments of ``argv`` as {name: value} (value read as YAML, as rospy
+    reads them), and ``argv`` without them. rospy would store them on the parameter server,
+    where the next run would find them; given to init_node without them, they live only for
+    this run."""
+    settings, rest = {}, []
+    for arg in argv:
+        name, sep, text = arg.partition(":=")
+        if sep and name.startswith("_") and not name.startswith("__") and is_legal_remap(arg):
+            try:
+                settings[name[1:]] = yaml.safe_load(text)
+            except yaml.YAMLError:
+                settings[name[1:]] = text
+        else:
+            rest.append(arg)
+    return settings, rest
 
 
 def wants_help(args: Sequence[str]) -> bool:

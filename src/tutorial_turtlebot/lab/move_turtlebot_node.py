@@ -8,7 +8,8 @@ Publishes:
     cmd_vel (geometry_msgs/Twist): linear.x = LINEAR m/s, angular.z = ANGULAR rad/s, at ~rate;
         a zero Twist on shutdown (Ctrl-C, or the end of ~duration).
 
-Parameters:
+Parameters (``_rate:=5`` on the command line holds for that run only: unlike rospy's habit, it
+is not left on the parameter server for the next run):
     ~rate (float, Hz, default 10): publishing rate, in ROS time.
     ~duration (float, s, default 0): stop after this long in ROS time; 0 runs until Ctrl-C.
     ~model, else model (str, default $TURTLEBOT3_MODEL or burger): whose speed limits to warn
@@ -20,7 +21,8 @@ import rospy
 
 from ..errors import UserError
 from .lab_node import CommandPublisher, model_name, number_param
-from .move_args import USAGE, parse, user_args, wants_help
+from .move_args import (SETTINGS, USAGE, command_line_settings, parse, user_args,
+                        wants_help)
 from ..sim.robot_models import model_limits
 
 
@@ -49,7 +51,8 @@ class MoveTurtlebot:
 
 def main(argv=None) -> None:
     """Entry point of scripts/move_turtlebot."""
-    args = user_args((sys.argv if argv is None else argv)[1:])
+    argv = sys.argv if argv is None else argv
+    args = user_args(argv[1:])
     if wants_help(args):
         print(USAGE)
         return
@@ -59,9 +62,13 @@ def main(argv=None) -> None:
         sys.stderr.write("%s\nmove_turtlebot: error: %s\n" % (USAGE, err))
         sys.exit(2)
 
-    rospy.init_node("move_turtlebot")
-    rate_hz = number_param("~rate", 10.0, "Hz", above=0.0)
-    duration = number_param("~duration", 0.0, "s", at_least=0.0)
+    settings, ros_argv = command_line_settings(argv)
+    rospy.init_node("move_turtlebot", argv=ros_argv)
+    for name in sorted(set(settings) - set(SETTINGS)):
+        rospy.logwarn("_%s:=%s ignored: move_turtlebot's settings are %s"
+                      % (name, settings[name], ", ".join("_%s" % s for s in SETTINGS)))
+    rate_hz = number_param("~rate", 10.0, "Hz", above=0.0, given=settings.get("rate"))
+    duration = number_param("~duration", 0.0, "s", at_least=0.0, given=settings.get("duration"))
     model = model_name()
     max_linear, max_angular = model_limits(model)
     if abs(linear) > max_linear or abs(angular) > max_angular:

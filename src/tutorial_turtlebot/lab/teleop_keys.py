@@ -85,8 +85,9 @@ class Teleop:
             self.model, self.max_linear, self.max_angular)
 
     def status(self) -> str:
-        """The status line, e.g. "currently:\\tspeed 0.2\\tturn 1"."""
-        return "currently:\tspeed %g\tturn %g" % (self.speed, self.turn)
+        """The status line, e.g. "currently:\\tspeed 0.2\\tturn 1" (3 significant digits:
+        five presses of q give turn 1.61, not 1.61051)."""
+        return "currently:\tspeed %.3g\tturn %.3g" % (self.speed, self.turn)
 
     def step(self, key: Optional[str]) -> Output:
         """One loop: apply ``key`` (None for a read timeout), ramp the output, return it."""

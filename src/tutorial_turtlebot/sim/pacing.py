@@ -2,8 +2,9 @@
 
 The simulator owns the clock: it steps physics as fast as it can and, with a real-time factor
 ``rtf`` > 0, sleeps once sim time runs ``MIN_SLEEP`` ahead of ``rtf`` x wall time, until wall
-time has caught up. ``rtf`` 0 means never sleep. Times in seconds (float) from
-``time.monotonic``.
+time has caught up. ``wall_of`` says when (wall) a sim time is due, so a caller can send what it
+made ahead at its moment (``sleep_until``) while physics itself runs in batches. ``rtf`` 0 means
+never sleep. Times in seconds (float) from ``time.monotonic``.
 """
 import time
 from typing import Callable, Optional
@@ -12,11 +13,12 @@ from typing import Callable, Optional
 class Pacer:
     """Keeps sim time at ``rtf`` times wall time, and reports the factor achieved."""
 
-    # Sleep only once this far ahead (s of wall time). Each wake-up costs far more than a step
-    # (caches are cold again), so the sim runs 20 ms of wall time's worth of steps at once and
-    # sleeps 20 ms: at real time that halves its CPU against sleeping after every 2.5 ms step.
-    # Messages then arrive in bursts of at most 20 ms, each with its exact sim-time stamp.
+    # Sleep only once this far ahead (s of wall time). Each wake-up that steps physics costs
+    # far more than a step (caches are cold again), so physics runs 20 ms of wall time's worth
+    # of steps at once: at real time that halves its CPU against sleeping after every step.
     MIN_SLEEP = 0.02
+    # sleep_until does not sleep for less than this (s): the sleep's own overshoot is larger.
+    SHORTEST_SLEEP = 0.0002
     # Never try to catch up more than this much wall time (s) after a stall.
     MAX_LAG = 0.25
 
@@ -31,23 +33,47 @@ class Pacer:
         self._min_sleep = min_sleep
         self.restart(0.0)
 
+    def set_rtf(self, rtf: float, sim_time: float) -> None:
+        """A new factor (0 = as fast as possible) from now on, at ``sim_time``."""
+        if not rtf >= 0:
+            raise ValueError("real_time_factor must be >= 0 (0 = as fast as possible), got %r"
+                             % rtf)
+        self.rtf = rtf
+        self.restart(sim_time)
+
     def restart(self, sim_time: float) -> None:
         """Re-anchor at ``sim_time`` now (after a pause, a reset or at start)."""
         now = self._clock()
         self._anchor_wall, self._anchor_sim = now, sim_time
         self._window_wall, self._window_sim = now, sim_time
 
-    def wait(self, sim_time: float) -> None:
-        """Sleep until wall time has caught up with ``sim_time`` at the target factor."""
+    def wall_of(self, sim_time: float) -> float:
+        """The wall time (clock) at which ``sim_time`` is due; only for ``rtf`` > 0."""
+        return self._anchor_wall + (sim_time - self._anchor_sim) / self.rtf
+
+    def ahead(self, sim_time: float) -> float:
+        """Wall seconds by which ``sim_time`` runs ahead of the clock (0 at ``rtf`` 0). When
+        far behind (a busy machine), the debt is forgiven instead of raced to repay."""
         if self.rtf <= 0:
-            return
-        target_wall = self._anchor_wall + (sim_time - self._anchor_sim) / self.rtf
-        ahead = target_wall - self._clock()
+            return 0.0
+        ahead = self.wall_of(sim_time) - self._clock()
+        if ahead < -self.MAX_LAG:
+            self._anchor_wall, self._anchor_sim = self._clock(), sim_time
+            return 0.0
+        return ahead
+
+    def sleep_until(self, wall_time: float) -> None:
+        """Sleep until the clock reads ``wall_time`` (not at all when that is under
+        SHORTEST_SLEEP away)."""
+        delay = wall_time - self._clock()
+        if delay >= self.SHORTEST_SLEEP:
+            self._sleep(delay)
+
+    def wait(self, sim_time: float) -> None:
+        """Once ``sim_time`` is ``min_sleep`` or more ahead, sleep until the clock catches up."""
+        ahead = self.ahead(sim_time)
         if ahead >= self._min_sleep:
             self._sleep(ahead)
-        elif ahead < -self.MAX_LAG:
-            # Too far behind (machine busy): forget the debt instead of racing to repay it.
-            self._anchor_wall, self._anchor_sim = self._clock(), sim_time
 
     def achieved(self, sim_time: float) -> Optional[float]:
         """Factor achieved since the last call (None if no wall time passed); starts a new window."""

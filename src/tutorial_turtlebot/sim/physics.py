@@ -12,6 +12,7 @@ from xml.etree import ElementTree
 
 import numpy as np
 
+from . import gui_window
 from .bullet import pybullet, quiet_output
 from .camera import disable_egl, enable_egl
 from .robot_models import ModelSpec
@@ -64,7 +65,7 @@ class TurtleBotPhysics:
         self.spec = spec
         self.description = description
         self.time_step = time_step
-        self.client = pybullet.connect(pybullet.GUI if gui else pybullet.DIRECT)
+        self.client = gui_window.open_window() if gui else pybullet.connect(pybullet.DIRECT)
         if self.client < 0:
             raise RuntimeError("pybullet could not open its window")
         cid = self.client
@@ -86,6 +87,8 @@ class TurtleBotPhysics:
         self.spawn_pose: Pose = ((x, y, z + SPAWN_CLEARANCE),
                                  tuple(pybullet.getQuaternionFromEuler((0.0, 0.0, yaw))))
         self.reset_robot()
+        if gui:
+            gui_window.look_at(cid, (x, y, z), yaw)
 
     def _load_robot(self, path: str) -> int:
         cid = self.client
@@ -187,7 +190,7 @@ class TurtleBotPhysics:
     def close(self) -> None:
         """Disconnect the pybullet client."""
         if self.client is not None:
-            with quiet_output():
+            with quiet_output():  # the window's threads say goodbye on fd 1 and 2
                 disable_egl(self.client)  # client ids are reused after a disconnect
-            pybullet.disconnect(physicsClientId=self.client)
+                pybullet.disconnect(physicsClientId=self.client)
             self.client = None

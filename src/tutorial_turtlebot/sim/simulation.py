@@ -6,7 +6,7 @@ Frames: odometry is ``base_footprint`` in ``odom``; the scan is in ``base_scan``
 ``imu_link``. Units: m, s, rad.
 """
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import List, Optional, Tuple
 
 import numpy as np
@@ -17,11 +17,14 @@ from .diff_drive import SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController, sanitize
 from ..errors import UserError
 from .lidar import LaserConfig, laser_config, ranges_from_distances, ray_directions
 from .physics import GRAVITY, TurtleBotPhysics
+from .physics_properties import OdeConfig, PhysicsProperties, bullet_parameters
+from .world_models import ModelRegistry, model_of_urdf_body, models_of_world, robot_model_name
 from .robot_models import CameraSpec, get_model
 from .spawn_check import check_spawn, footprint_radius
 from .schedule import NS_PER_S, RateSchedule, seconds_to_ns
 from .urdf_file import read_urdf, urdf_path
 from .wheel_odometry import WheelOdometry
+from .bullet import pybullet
 from .world_sdf import load_world, resolve_world
 
 ODOM_SOURCES = ("world", "encoders")
@@ -56,6 +59,8 @@ class SimConfig:
     imu_rate: float = 200.0
     clock_rate: float = 100.0
     seed: int = 0                        # laser noise
+    robot_name: Optional[str] = None     # the robot's model name; None = turtlebot3_gazebo's
+    lidar_samples: int = 360             # rays per scan (the DQN agent of the stages wants 24)
 
     def validate(self) -> None:
         """Raise UserError (one line) for any value that cannot be simulated."""
@@ -74,9 +79,23 @@ class SimConfig:
             if value is not None and not (isinstance(value, (int, float))
                                           and math.isfinite(value)):
                 raise UserError("spawn %s must be a finite number, got %r" % (name, value))
+        if not (isinstance(self.lidar_samples, int) and 2 <= self.lidar_samples <= 3600):
+            raise UserError("lidar_samples must be an integer in 2..3600, got %r"
+                            % (self.lidar_samples,))
+        if self.robot_name is not None and (not self.robot_name.strip() or "::" in self.robot_name):
+            raise UserError("robot_name %r must be non-empty and without '::'" % self.robot_name)
         if not (isinstance(self.solver_iterations, int) and self.solver_iterations > 0):
             raise UserError("solver_iterations must be a positive integer, got %r"
                             % (self.solver_iterations,))
+
+
+def _with_samples(laser: LaserConfig, samples: int) -> LaserConfig:
+    """``laser`` with ``samples`` rays over the same sweep (Gazebo's <samples>)."""
+    if samples == laser.samples:
+        return laser
+    span = laser.angle_increment * (laser.samples - 1)
+    return replace(laser, samples=samples, angle_max=laser.angle_min + span,
+                   angle_increment=span / (samples - 1))
 
 
 @dataclass
@@ -106,7 +125,8 @@ class Simulation:
         config.validate()
         self.config = config
         self.spec = get_model(config.model)
-        self.laser: LaserConfig = laser_config(config.lidar_model)
+        self.laser: LaserConfig = _with_samples(laser_config(config.lidar_model),
+                                                config.lidar_samples)
         world_path, world_spawn = resolve_world(config.world)
         self.world = load_world(world_path)
         spawn = self._spawn(world_spawn)
@@ -121,6 +141,17 @@ class Simulation:
                                       use_egl=self.physics.egl or config.gui)
                        if self.camera_spec else None)
         self.spawn = spawn
+        self.models = ModelRegistry()
+        for model in models_of_world(self.world, self.physics.world_bodies, self.physics.client):
+            self.models.add(model)
+        self.robot_name = config.robot_name or robot_model_name(
+            config.world if not config.world.endswith((".world", ".sdf")) else "", config.model)
+        self.models.add(model_of_urdf_body(self.robot_name, self.physics.robot,
+                                           self.physics.client, "robot",
+                                           reset_hook=self.physics.reset_robot))
+        self.physics_properties = PhysicsProperties.for_factor(
+            config.time_step, 1.0, OdeConfig(sor_pgs_iters=config.solver_iterations),
+            (0.0, 0.0, -GRAVITY))
         self.step_ns = seconds_to_ns(config.time_step)
         self.drive = DiffDriveController(self.spec.wheel_separation, self.spec.wheel_radius,
                                          self.spec.wheel_acceleration)
@@ -208,9 +239,28 @@ class Simulation:
         return due
 
     def reset_world(self) -> None:
-        """Robot back to its spawn pose at rest; time runs on (Gazebo's reset_world)."""
-        self.physics.reset_robot()
+        """Every model (the robot, the world's movable models, spawned ones) back to its spawn
+        pose at rest; time runs on (Gazebo's reset_world)."""
+        self.models.reset()
         self._reset_state()
+
+    def add_schedule(self, name: str, rate: float) -> None:
+        """Report ``name`` from step() at ``rate`` Hz of sim time from now on."""
+        self.schedules[name] = RateSchedule(rate)
+        self.schedules[name].reset(self.time_ns)
+        self._next_output_ns = self.time_ns
+
+    def set_physics_properties(self, props: PhysicsProperties) -> None:
+        """Apply a validated PhysicsProperties: the step, gravity and Bullet's counterparts of
+        the ODE fields; the real-time factor is the caller's pacer's."""
+        cid = self.physics.client
+        pybullet.setTimeStep(props.time_step, physicsClientId=cid)
+        pybullet.setGravity(*props.gravity, physicsClientId=cid)
+        pybullet.setPhysicsEngineParameter(physicsClientId=cid, **bullet_parameters(props.ode))
+        self.physics.time_step = props.time_step
+        self.config.time_step = props.time_step
+        self.step_ns = seconds_to_ns(props.time_step)
+        self.physics_properties = props
 
     def reset_simulation(self) -> None:
         """Robot back to spawn and sim time back to 0 (Gazebo's reset_simulation)."""

@@ -1,20 +1,24 @@
-"""Build a loaded ``World`` (world_sdf) as fixed pybullet bodies. Knows nothing of ROS.
+"""Build a loaded ``World`` (world_sdf) as pybullet bodies. Knows nothing of ROS.
 
-Every collision shape becomes one fixed body that also carries its visual twin's colour, so
-contacts, rays and cameras all see it; a visual without a collision twin becomes a body that
-cameras see and rays and contacts pass through. Dynamic (non-static) models are fixed too: the
-TurtleBot3 worlds have none.
+Static models: every collision shape becomes one fixed body that also carries its visual twin's
+colour, so contacts, rays and cameras all see it; a visual without a collision twin becomes a
+body that cameras see and rays and contacts pass through.
+Models that are not ``<static>``: every link becomes one movable rigid body of the link's
+``<inertial>`` mass and inertia, holding all its collisions and visuals (box, cylinder, sphere)
+and its collisions' friction. Its frame is the link's centre of mass (see ``link_com_pose``).
 
 Units: metres; poses in the world frame (z up), as in world_sdf.
 """
+import math
 import os
 import tempfile
-from typing import Dict, List, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
+import numpy as np
 
 from .bullet import pybullet
 from ..errors import WorldError
-from .world_sdf import Shape, World
+from .world_sdf import Inertial, Link, Shape, World
 
 # World bodies are in collision group 4. A laser that must see the world only casts rays with
 # collisionFilterMask=WORLD_COLLISION_GROUP, and other bodies (the robot) use another group.
@@ -22,6 +26,11 @@ from .world_sdf import Shape, World
 # drops the world's own bit, so that static bodies never test each other (wasted work every step).
 WORLD_COLLISION_GROUP = 4
 WORLD_COLLISION_MASK = 0xFFFF & ~WORLD_COLLISION_GROUP
+# Movable bodies: in the world's group (the laser sees them) and one of their own, which the
+# static bodies' mask keeps, so that they rest on the floor and hit walls.
+MOVABLE_COLLISION_GROUP = WORLD_COLLISION_GROUP | 8
+MOVABLE_COLLISION_MASK = 0xFFFF
+MOVABLE_KINDS = ("box", "cylinder", "sphere")
 
 WORLD_FRICTION = 1.0        # lateral friction coefficient of every world surface
 WORLD_RESTITUTION = 0.0
@@ -38,18 +47,154 @@ Point = Tuple[float, float]
 def build_world(world: World, client_id: int) -> Dict[str, int]:
     """Create the world's bodies in pybullet client ``client_id``.
 
-    Returns shape name -> body id, for every collision shape and every visual without a twin.
-    A polyline that is not convex is one body whose extra pieces are links of that body.
+    Returns shape name -> body id, for every collision shape and every visual without a twin of
+    a static model (a polyline that is not convex is one body whose extra pieces are links of
+    that body), and for every shape of a movable link (all of one link's shapes share its body).
     """
     bodies = {}
+    movable: Dict[str, List[Shape]] = {}
     # Box, plane and polyline visuals are mesh files, read when their body is created.
     with tempfile.TemporaryDirectory(prefix="tutorial_turtlebot_meshes_") as mesh_dir:
         for shape in world.collisions:
-            bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=True)
+            if shape.static:
+                bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=True)
+            else:
+                movable.setdefault(shape.link, []).append(shape)
         for shape in world.visuals:
-            if shape.twin is None:
+            if not shape.static:
+                movable.setdefault(shape.link, []).append(shape)
+            elif shape.twin is None:
                 bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=False)
+        links = {link.scoped: link for model in world.model_specs for link in model.links}
+        for scoped, shapes in movable.items():
+            body = _movable_body(links[scoped], shapes, client_id, mesh_dir)
+            bodies.update((shape.name, body) for shape in shapes)
     return bodies
+
+
+def link_com_pose(link: Link):
+    """World pose ((x, y, z), (qx, qy, qz, qw)) of a movable link's body frame: the centre of
+    mass, its axes along the principal axes of inertia."""
+    com_in_link = _com_frame(link.inertial)
+    return pybullet.multiplyTransforms(*_pose7(link.pose), *com_in_link)
+
+
+def _com_frame(inertial: Inertial):
+    """(position, quaternion) of the principal-axes centre-of-mass frame in the link frame, and
+    nothing else: see ``_principal``."""
+    rotation, _ = _principal(inertial)
+    pos, orn = _pose7(inertial.pose)
+    return pybullet.multiplyTransforms(pos, orn, (0, 0, 0), rotation)
+
+
+def _principal(inertial: Inertial):
+    """(quaternion of the principal axes in the inertial frame, principal moments)."""
+    ixx, iyy, izz, ixy, ixz, iyz = inertial.inertia
+    if ixy == ixz == iyz == 0.0:
+        return (0.0, 0.0, 0.0, 1.0), (ixx, iyy, izz)
+    tensor = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+    moments, axes = np.linalg.eigh(tensor)
+    if np.linalg.det(axes) < 0:
+        axes[:, 2] = -axes[:, 2]
+    return _quat_from_matrix(axes), tuple(float(m) for m in moments)
+
+
+def _quat_from_matrix(m) -> Tuple[float, float, float, float]:
+    trace = m[0][0] + m[1][1] + m[2][2]
+    if trace > 0:
+        s = 2.0 * math.sqrt(trace + 1.0)
+        return ((m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s,
+                0.25 * s)
+    i = int(np.argmax([m[0][0], m[1][1], m[2][2]]))
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = 2.0 * math.sqrt(1.0 + m[i][i] - m[j][j] - m[k][k])
+    q = [0.0, 0.0, 0.0, 0.0]
+    q[i] = 0.25 * s
+    q[j] = (m[j][i] + m[i][j]) / s
+    q[k] = (m[k][i] + m[i][k]) / s
+    q[3] = (m[k][j] - m[j][k]) / s
+    return tuple(q)
+
+
+def _pose7(pose: Sequence[float]):
+    """An SDF pose (x, y, z, roll, pitch, yaw) as ((x, y, z), quaternion)."""
+    return tuple(pose[:3]), tuple(pybullet.getQuaternionFromEuler(pose[3:]))
+
+
+def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> int:
+    """One movable rigid body for ``link``: its collisions and visuals placed around its centre
+    of mass, its mass and principal moments of inertia, its first collision's friction."""
+    com_pos, com_orn = link_com_pose(link)
+    to_com = pybullet.invertTransform(com_pos, com_orn)
+    collisions = [s for s in shapes if s.collision]
+    visuals = [s for s in shapes if not s.collision]
+    for s in shapes:
+        if s.kind not in MOVABLE_KINDS:
+            raise WorldError("%s: a %s cannot be part of a model that is not <static> (movable "
+                             "models are made of %s)" % (s.name, s.kind, ", ".join(MOVABLE_KINDS)))
+    col = -1
+    if collisions:
+        col = pybullet.createCollisionShapeArray(
+            **_shape_arrays(collisions, to_com, cid, None), physicsClientId=cid)
+    vis = -1
+    if visuals:
+        vis = pybullet.createVisualShapeArray(
+            **_shape_arrays(visuals, to_com, cid, mesh_dir), physicsClientId=cid)
+    _, moments = _principal(link.inertial)
+    body = pybullet.createMultiBody(baseMass=link.inertial.mass, baseCollisionShapeIndex=col,
+                                    baseVisualShapeIndex=vis, basePosition=com_pos,
+                                    baseOrientation=com_orn, physicsClientId=cid)
+    if body < 0:
+        raise WorldError("%s: pybullet could not build this link" % link.scoped)
+    mu = collisions[0].mu if collisions else WORLD_FRICTION
+    pybullet.changeDynamics(body, -1, localInertiaDiagonal=moments, lateralFriction=mu,
+                            restitution=WORLD_RESTITUTION, linearDamping=0.0, angularDamping=0.0,
+                            activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
+                            physicsClientId=cid)
+    pybullet.setCollisionFilterGroupMask(body, -1, MOVABLE_COLLISION_GROUP,
+                                         MOVABLE_COLLISION_MASK if collisions else 0,
+                                         physicsClientId=cid)
+    return body
+
+
+def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: Optional[str]) -> dict:
+    """Keyword arguments of createCollisionShapeArray (``mesh_dir`` None) or
+    createVisualShapeArray for primitive ``shapes`` placed in the body frame ``to_com``."""
+    args = {"shapeTypes": [], "halfExtents": [], "radii": [], "lengths": [],
+            "fileNames": [], "meshScales": [],
+            "collisionFramePositions" if mesh_dir is None else "visualFramePositions": [],
+            "collisionFrameOrientations" if mesh_dir is None else "visualFrameOrientations": []}
+    positions = args.get("collisionFramePositions", args.get("visualFramePositions"))
+    orientations = args.get("collisionFrameOrientations", args.get("visualFrameOrientations"))
+    if mesh_dir is not None:
+        args["rgbaColors"] = []
+    for s in shapes:
+        pos, orn = pybullet.multiplyTransforms(*to_com, *_pose7(s.pose))
+        positions.append(pos)
+        orientations.append(orn)
+        half, radius, length, mesh = [0.0] * 3, 0.0, 0.0, ""
+        kind = {"box": pybullet.GEOM_BOX, "cylinder": pybullet.GEOM_CYLINDER,
+                "sphere": pybullet.GEOM_SPHERE}[s.kind]
+        if s.kind == "box":
+            half = [v / 2 for v in s.size]
+            if mesh_dir is not None:   # a file: EGL flattens thin GEOM_BOX visuals
+                hx, hy = half[0], half[1]
+                mesh = _obj_file([(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)],
+                                 -half[2], half[2], mesh_dir)
+                kind = pybullet.GEOM_MESH
+        elif s.kind == "cylinder":
+            radius, length = s.size
+        else:
+            radius = s.size[0]
+        args["shapeTypes"].append(kind)
+        args["halfExtents"].append(half)
+        args["radii"].append(radius)
+        args["lengths"].append(length)
+        args["fileNames"].append(mesh)
+        args["meshScales"].append([1.0, 1.0, 1.0])
+        if mesh_dir is not None:
+            args["rgbaColors"].append(s.rgba)
+    return args
 
 
 def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
@@ -135,6 +280,14 @@ def _mesh_visual(polygon: Sequence[Point], z0: float, z1: float, rgba, cid: int,
     A file, because pybullet's EGL renderer draws no mesh given as vertex lists, and flattens
     thin boxes; both renderers draw a file as it is.
     """
+    return pybullet.createVisualShape(pybullet.GEOM_MESH, rgbaColor=rgba,
+                                      fileName=_obj_file(polygon, z0, z1, mesh_dir),
+                                      physicsClientId=cid)
+
+
+def _obj_file(polygon: Sequence[Point], z0: float, z1: float, mesh_dir: str) -> str:
+    """Path of a Wavefront file in ``mesh_dir`` of the convex counter-clockwise polygon extruded
+    from ``z0`` to ``z1``, flat-shaded."""
     n = len(polygon)
     normals = [(0.0, 0.0, 1.0), (0.0, 0.0, -1.0)]
     for i in range(n):
@@ -153,8 +306,7 @@ def _mesh_visual(polygon: Sequence[Point], z0: float, z1: float, rgba, cid: int,
     fd, path = tempfile.mkstemp(suffix=".obj", prefix="visual_", dir=mesh_dir)
     with os.fdopen(fd, "w") as f:
         f.write("\n".join(lines) + "\n")
-    return pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path, rgbaColor=rgba,
-                                      physicsClientId=cid)
+    return path
 
 
 def _cross(o: Point, a: Point, b: Point) -> float:

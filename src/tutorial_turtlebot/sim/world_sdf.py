@@ -7,8 +7,11 @@ The subset: a ``<world>`` (or bare ``<model>`` elements) holding static or dynam
 models and links, whose collisions and visuals have a ``box``, ``cylinder``, ``sphere``, ``plane``
 or one extruded ``polyline`` geometry; ``<pose>`` as "x y z roll pitch yaw" (``degrees="true"``
 allowed); visual ``<material>`` colours; ``<include>`` of ``model://sun`` (a light: skipped) and
-``model://ground_plane`` (Gazebo's standard plane). Elements that do not shape the world (physics,
-scene, light, gui, plugin, inertial, sensor, joint, surface ...) are skipped. Anything else that
+``model://ground_plane`` (Gazebo's standard plane). A model's links keep their ``<inertial>`` (SDF's
+defaults where absent: 1 kg, inertia 1 kg m^2 about each axis) and each collision its
+``<surface><friction><ode><mu>`` (default 1), so that a model that is not ``<static>`` can be a
+movable rigid body. Elements that do not shape the world (physics, scene, light, gui, plugin,
+sensor, joint ...) are skipped. Anything else that
 would carry geometry (a mesh, a heightmap, any other included model) is an error, never a silent gap.
 
 Units: metres, radians. Poses are in the world frame (z up); angles are SDF's fixed-axis roll,
@@ -16,7 +19,7 @@ pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
 """
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 from xml.parsers import expat
 
@@ -70,6 +73,38 @@ class Shape:
     collision: bool = True   # True: a <collision>; False: a <visual>
     twin: Optional[str] = None  # the element of the other kind in the same link with the same
     #                             geometry and pose (a collision's visual, a visual's collision)
+    link: str = ""           # scoped name of its link ("model::link")
+    mu: float = 1.0          # a collision's friction coefficient (<surface><friction><ode><mu>)
+
+
+@dataclass(frozen=True)
+class Inertial:
+    """A link's mass properties; SDF's defaults where the file gives none."""
+
+    mass: float = 1.0                                    # kg
+    pose: Pose = IDENTITY                                # centre of mass in the link frame
+    inertia: Tuple[float, ...] = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)  # ixx iyy izz ixy ixz iyz, kg m^2
+
+
+@dataclass(frozen=True)
+class Link:
+    """One link of a model: where it is and what it weighs; its shapes carry ``link=scoped``."""
+
+    name: str                # the link's own name (Gazebo's body_names)
+    scoped: str              # "model::link" (nested models add parts), as /gazebo/link_states
+    pose: Pose               # world pose of the link frame
+    inertial: Inertial = Inertial()
+
+
+@dataclass(frozen=True)
+class Model:
+    """A top-level model of a world file, as /gazebo/model_states lists it."""
+
+    name: str
+    pose: Pose               # world pose of the model frame
+    static: bool
+    links: Tuple[Link, ...]
+    joints: Tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -80,6 +115,19 @@ class World:
     path: str
     models: Tuple[str, ...]     # top-level model names in file order (as /gazebo/model_states)
     shapes: Tuple[Shape, ...]
+    model_specs: Tuple[Model, ...] = ()   # the same models with their links, in file order
+
+    def model(self, name: str) -> Model:
+        """The top-level model called ``name``; KeyError if there is none."""
+        for m in self.model_specs:
+            if m.name == name:
+                return m
+        raise KeyError(name)
+
+    def model_shapes(self, name: str) -> Tuple[Shape, ...]:
+        """The collisions and visuals of model ``name`` (nested models included)."""
+        prefix = name + "::"
+        return tuple(s for s in self.shapes if s.name.startswith(prefix))
 
     @property
     def collisions(self) -> Tuple[Shape, ...]:
@@ -114,10 +162,23 @@ _CATALOGUE = (
     ("turtlebot3_world", WorldEntry("turtlebot3_world.world", (-2.0, -0.5, 0.0))),
     ("turtlebot3_house", WorldEntry("turtlebot3_house.world", (-3.0, 1.0, 0.0))),
     ("turtlebot3_autorace", WorldEntry("turtlebot3_autorace.world", (0.245, -1.787, 0.0))),
+    # The learning stages of turtlebot3_machine_learning (gazebo_api.md 3.1).
+    ("turtlebot3_stage_1", WorldEntry("turtlebot3_stage_1.world", (0.0, 0.0, 0.0))),
+    ("turtlebot3_stage_2", WorldEntry("turtlebot3_stage_2.world", (0.0, 0.0, 0.0))),
+    ("turtlebot3_stage_3", WorldEntry("turtlebot3_stage_3.world", (0.0, 0.0, 0.0))),
+    ("turtlebot3_stage_4", WorldEntry("turtlebot3_stage_4.world", (-0.7, 0.0, 0.0))),
 )
 WORLDS: Dict[str, WorldEntry] = {name: entry for name, entry in _CATALOGUE
                                  if os.path.isfile(os.path.join(WORLD_DIR, entry.file))}
 WORLD_SUFFIXES = (".world", ".sdf")
+
+
+def world_from_command_line(world: str, environ=os.environ) -> str:
+    """``world`` with a relative file path made absolute against the directory the user typed
+    the command in (roslaunch runs the sim in ~/.ros, but leaves the shell's $PWD as it was)."""
+    if world.endswith(WORLD_SUFFIXES) and not os.path.isabs(os.path.expanduser(world)):
+        return os.path.join(environ.get("PWD") or os.getcwd(), world)
+    return world
 
 
 def resolve_world(name_or_path: str) -> Tuple[str, Optional[Spawn]]:
@@ -158,13 +219,36 @@ class _Node:
         return [c for c in self.children if c.tag == tag]
 
 
+MAX_XML_DEPTH = 64            # elements nested deeper than this are refused (no real model nests so)
+
+
 def _parse_xml(path: str) -> _Node:
     """The document's root element; malformed XML raises WorldError naming file and line."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except FileNotFoundError:
+        raise WorldError("world file not found: %s" % path) from None
+    except OSError as err:
+        raise WorldError("cannot read world file %s: %s" % (path, err.strerror)) from None
+    return parse_xml(data, path)
+
+
+def parse_xml(data, source: str, max_depth: int = MAX_XML_DEPTH) -> _Node:
+    """The root element of the XML text ``data`` (str or bytes); WorldError naming ``source`` and
+    the line for malformed XML, a DOCTYPE (entities are never expanded) or nesting deeper than
+    ``max_depth`` elements."""
     stack: List[_Node] = []
     roots: List[_Node] = []
     parser = expat.ParserCreate()
 
+    class _Refused(Exception):
+        pass
+
     def start(tag, attrib):
+        if len(stack) >= max_depth:
+            raise _Refused("%s:%d: elements nested more than %d deep"
+                           % (source, parser.CurrentLineNumber, max_depth))
         node = _Node(tag, attrib, parser.CurrentLineNumber)
         (stack[-1].children if stack else roots).append(node)
         stack.append(node)
@@ -177,19 +261,21 @@ def _parse_xml(path: str) -> _Node:
         if stack:
             stack[-1].text += data
 
+    def doctype(*_args):
+        raise _Refused("%s:%d: a DOCTYPE (entity definitions) is not supported"
+                       % (source, parser.CurrentLineNumber))
+
     parser.StartElementHandler = start
     parser.EndElementHandler = end
     parser.CharacterDataHandler = text
+    parser.StartDoctypeDeclHandler = doctype
     try:
-        with open(path, "rb") as f:
-            parser.ParseFile(f)
-    except FileNotFoundError:
-        raise WorldError("world file not found: %s" % path) from None
-    except OSError as err:
-        raise WorldError("cannot read world file %s: %s" % (path, err.strerror)) from None
+        parser.Parse(data, True)
+    except _Refused as err:
+        raise WorldError(str(err)) from None
     except expat.ExpatError as err:
         raise WorldError("%s:%d: malformed XML: %s"
-                         % (path, err.lineno, expat.ErrorString(err.code))) from None
+                         % (source, err.lineno, expat.ErrorString(err.code))) from None
     return roots[0]
 
 
@@ -344,18 +430,31 @@ class _Loader:
             world, name = root, os.path.splitext(os.path.basename(self.path))[0]
         else:
             name = world.attrib.get("name", "default")
-        models = []
+        return self.models_of(world, name)
+
+    def models_of(self, world: _Node, name: str, parent: Pose = IDENTITY) -> World:
+        """The World made of ``world``'s top-level models and includes, placed in ``parent``."""
+        models: List[Model] = []
         for node in world.children:
             if node.tag == "model":
-                models.append(self.model(node, IDENTITY, "", False))
+                models.append(self.top_model(node, parent))
             elif node.tag == "include":
-                models.extend(self.include(node, IDENTITY, ""))
+                models.extend(self.include(node, parent, ""))
             elif node.tag in _UNSUPPORTED_WORLD:
                 raise self.fail(node, "<%s> is not supported: build it from models" % node.tag)
-        return World(name, self.path, tuple(models), tuple(self.shapes))
+        return World(name, self.path, tuple(m.name for m in models), tuple(self.shapes),
+                     tuple(models))
 
-    def include(self, node: _Node, parent: Pose, scope: str) -> List[str]:
-        """The model names an <include> adds: model://ground_plane is built in, model://sun is
+    def top_model(self, node: _Node, parent: Pose) -> Model:
+        self._links: List[Link] = []
+        self._joints: List[str] = []
+        name = self.model(node, parent, "", False)
+        pose = compose(parent, self.pose(node))
+        return Model(name, pose, self.flag(node.child("static")), tuple(self._links),
+                     tuple(self._joints))
+
+    def include(self, node: _Node, parent: Pose, scope: str) -> List[Model]:
+        """The models an <include> adds: model://ground_plane is built in, model://sun is
         a light (nothing to add); other models must be written into the file."""
         uri_node = node.child("uri")
         uri = uri_node.text if uri_node is not None else ""
@@ -367,14 +466,18 @@ class _Loader:
         name_node = node.child("name")
         name = name_node.text if name_node is not None else "ground_plane"
         pose = compose(parent, self.pose(node))
-        scoped = scope + name + "::link::"
+        link = scope + name + "::link"
+        scoped = link + "::"
         grey = GAZEBO_MATERIALS["Gazebo/Grey"]
         size = (100.0, 100.0)
         self.shapes.append(Shape(scoped + "collision", "plane", pose, size, rgba=grey,
-                                 twin=scoped + "visual"))
+                                 twin=scoped + "visual", link=link))
         self.shapes.append(Shape(scoped + "visual", "plane", pose, size, rgba=grey,
-                                 collision=False, twin=scoped + "collision"))
-        return [name]
+                                 collision=False, twin=scoped + "collision", link=link))
+        if scope:   # nested in another model: its link belongs to that model
+            self._links.append(Link("link", link, pose))
+            return []
+        return [Model(name, pose, True, (Link("link", link, pose),))]
 
     def model(self, node: _Node, parent: Pose, scope: str, parent_static: bool) -> str:
         name = self.name(node)
@@ -388,6 +491,8 @@ class _Loader:
                 self.model(child, pose, scope, static)
             elif child.tag == "include":
                 self.include(child, pose, scope)
+            elif child.tag == "joint":
+                self._joints.append(self.name(child))
         return name
 
     def name(self, node: _Node) -> str:
@@ -398,14 +503,50 @@ class _Loader:
 
     def link(self, node: _Node, parent: Pose, scope: str, static: bool) -> None:
         pose = compose(parent, self.pose(node))
-        scope += self.name(node) + "::"
+        own = self.name(node)
+        link = scope + own
+        scope = link + "::"
         shapes = []
         for child in node.children:
             if child.tag in ("collision", "visual"):
                 shape = self.element(child, pose, scope, static)
                 if shape is not None:
-                    shapes.append(shape)
+                    shapes.append(replace(shape, link=link))
         self.shapes.extend(self.pair_twins(shapes))
+        self._links.append(Link(own, link, pose, self.inertial(node.child("inertial"))))
+
+    def inertial(self, node: Optional[_Node]) -> Inertial:
+        """A link's <inertial>, SDF's defaults for what it leaves out."""
+        if node is None:
+            return Inertial()
+        mass = Inertial.mass
+        mass_node = node.child("mass")
+        if mass_node is not None:
+            mass = self.floats(mass_node, 1)[0]
+            if not mass > 0:
+                raise self.fail(mass_node, "<mass> must be positive, got %r" % mass_node.text)
+        inertia = list(Inertial.inertia)
+        inertia_node = node.child("inertia")
+        if inertia_node is not None:
+            for i, tag in enumerate(("ixx", "iyy", "izz", "ixy", "ixz", "iyz")):
+                value = inertia_node.child(tag)
+                if value is not None:
+                    inertia[i] = self.floats(value, 1)[0]
+            if not all(v > 0 for v in inertia[:3]):
+                raise self.fail(inertia_node, "<inertia> ixx, iyy, izz must be positive")
+        return Inertial(mass, self.pose(node), tuple(inertia))
+
+    def friction(self, collision: _Node) -> float:
+        """<surface><friction><ode><mu> of a collision (SDF's default 1)."""
+        node = collision
+        for tag in ("surface", "friction", "ode", "mu"):
+            node = node.child(tag)
+            if node is None:
+                return 1.0
+        mu = self.floats(node, 1)[0]
+        if mu < 0:
+            raise self.fail(node, "<mu> must not be negative, got %r" % node.text)
+        return mu
 
     def element(self, node: _Node, parent: Pose, scope: str, static: bool) -> Optional[Shape]:
         """A collision or visual as a Shape; None for an empty geometry."""
@@ -442,7 +583,8 @@ class _Loader:
                             % (geo.tag, name, ", ".join(KINDS)))
         collision = node.tag == "collision"
         rgba = DEFAULT_RGBA if collision else self.colour(node.child("material"))
-        return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision)
+        mu = self.friction(node) if collision else 1.0
+        return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu)
 
     def polygon(self, polyline: _Node) -> Tuple[Tuple[float, float], ...]:
         points = [self.floats(p, 2) for p in polyline.all("point")]
@@ -489,9 +631,9 @@ class _Loader:
             if s.collision:
                 source = by_name.get(twin) if twin else (visuals[0] if visuals else None)
                 rgba = source.rgba if source else DEFAULT_RGBA
-                s = Shape(s.name, s.kind, s.pose, s.size, s.points, rgba, s.static, True, twin)
+                s = replace(s, rgba=rgba, twin=twin)
             elif twin:
-                s = Shape(s.name, s.kind, s.pose, s.size, s.points, s.rgba, s.static, False, twin)
+                s = replace(s, twin=twin)
             out.append(s)
         return out
 
@@ -517,5 +659,23 @@ def load_world(path: str) -> World:
     """Parse the SDF file at ``path``; WorldError (one line: file, line, fault) if it cannot."""
     loader = _Loader(path)
     world = loader.document(_parse_xml(path))
+    _check_names(world)
+    return world
+
+
+def load_model_xml(text, source: str, name: str, pose: Pose = IDENTITY) -> World:
+    """The one ``<model>`` of an SDF document given as text (a spawn request's model_xml), renamed
+    ``name`` and placed with its own <pose> composed onto ``pose``; WorldError (one line with the
+    line number) if it is not that."""
+    root = parse_xml(text, source)
+    loader = _Loader(source)
+    if root.tag not in ("sdf", "gazebo"):
+        raise loader.fail(root, "the root element is <%s>: an SDF model starts with <sdf>"
+                          % root.tag)
+    models = root.all("model")
+    if len(models) != 1:
+        raise loader.fail(root, "<sdf> must hold exactly one <model>, it holds %d" % len(models))
+    models[0].attrib = dict(models[0].attrib, name=name)
+    world = loader.models_of(_Node(root.tag, {}, root.line, children=models), name, pose)
     _check_names(world)
     return world

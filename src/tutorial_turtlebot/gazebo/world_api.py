@@ -1,0 +1,288 @@
+"""Gazebo's world API on the ``/gazebo`` node: the names, types and answers of
+gazebo_ros_api_plugin (gazebo_api.md 2), over sim/world_control.
+
+Publications (only while subscribed; every ``~model_states_rate`` Hz of sim time):
+  ~model_states (gazebo_msgs/ModelStates)  every model: world file, robot, spawned (in order)
+  ~link_states (gazebo_msgs/LinkStates)    every link, scoped "model::link"
+Subscriptions (the services' topic twins; the answer is dropped):
+  ~set_model_state (gazebo_msgs/ModelState), ~set_link_state (gazebo_msgs/LinkState)
+Services:
+  ~get_model_state, ~set_model_state, ~get_link_state, ~set_link_state, ~get_world_properties,
+  ~get_model_properties, ~spawn_sdf_model, ~spawn_urdf_model, ~delete_model,
+  ~get_physics_properties, ~set_physics_properties; dynamic_reconfigure of the physics
+  (gazebo/physics_config) on ``~``.
+Parameters:
+  ~model_states_rate (100.0)  Hz of sim time; 0 = never publish model/link states
+Every request runs in the simulation loop between two physics steps (SimNode's request queue)
+and answers within one step; a bad one gets success=false and Gazebo's one-line status.
+"""
+import threading
+
+import rospy
+from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEPhysics
+from gazebo_msgs.srv import (DeleteModel, DeleteModelResponse, GetLinkState,
+                             GetLinkStateResponse, GetModelProperties,
+                             GetModelPropertiesResponse, GetModelState, GetModelStateResponse,
+                             GetPhysicsProperties, GetPhysicsPropertiesResponse,
+                             GetWorldProperties, GetWorldPropertiesResponse, SetLinkState,
+                             SetLinkStateResponse, SetModelState, SetModelStateResponse,
+                             SetPhysicsProperties, SetPhysicsPropertiesResponse, SpawnModel,
+                             SpawnModelResponse)
+from geometry_msgs.msg import Pose, Twist
+
+from ..sim.physics_properties import OdeConfig, PhysicsProperties
+from ..sim.world_control import RequestError, WorldControl
+
+ANSWER_TIMEOUT = 10.0    # wall s a service waits for the loop before it gives up
+
+
+def pose_in(msg):
+    p, q = msg.position, msg.orientation
+    return (p.x, p.y, p.z), (q.x, q.y, q.z, q.w)
+
+
+def twist_in(msg):
+    return (msg.linear.x, msg.linear.y, msg.linear.z), (msg.angular.x, msg.angular.y, msg.angular.z)
+
+
+def fill_pose(msg, pose):
+    (msg.position.x, msg.position.y, msg.position.z), \
+        (msg.orientation.x, msg.orientation.y, msg.orientation.z, msg.orientation.w) = pose
+    return msg
+
+
+def fill_twist(msg, twist):
+    (msg.linear.x, msg.linear.y, msg.linear.z), \
+        (msg.angular.x, msg.angular.y, msg.angular.z) = twist
+    return msg
+
+
+def _states(msg_type, states):
+    msg = msg_type()
+    msg.name = [name for name, _, _ in states]
+    msg.pose = [fill_pose(Pose(), pose) for _, pose, _ in states]
+    msg.twist = [fill_twist(Twist(), twist) for _, _, twist in states]
+    return msg
+
+
+def ode_msg(ode: OdeConfig) -> ODEPhysics:
+    return ODEPhysics(auto_disable_bodies=ode.auto_disable_bodies,
+                      sor_pgs_precon_iters=ode.sor_pgs_precon_iters,
+                      sor_pgs_iters=ode.sor_pgs_iters, sor_pgs_w=ode.sor_pgs_w,
+                      sor_pgs_rms_error_tol=ode.sor_pgs_rms_error_tol,
+                      contact_surface_layer=ode.contact_surface_layer,
+                      contact_max_correcting_vel=ode.contact_max_correcting_vel,
+                      cfm=ode.cfm, erp=ode.erp, max_contacts=ode.max_contacts)
+
+
+def ode_in(msg: ODEPhysics) -> OdeConfig:
+    return OdeConfig(bool(msg.auto_disable_bodies), int(msg.sor_pgs_precon_iters),
+                     int(msg.sor_pgs_iters), float(msg.sor_pgs_w),
+                     float(msg.sor_pgs_rms_error_tol), float(msg.contact_surface_layer),
+                     float(msg.contact_max_correcting_vel), float(msg.cfm), float(msg.erp),
+                     int(msg.max_contacts))
+
+
+class WorldApi:
+    """Adds the world API to a SimNode (topics, services, due publishing, dynamic_reconfigure)."""
+
+    def __init__(self, node, model_states_rate: float = 100.0):
+        self.node = node
+        self.sim = node.sim
+        self.control = WorldControl(node.sim)
+        self.pubs = {"model_states": node._publisher("~model_states", ModelStates, 10),
+                     "link_states": node._publisher("~link_states", LinkStates, 10)}
+        if model_states_rate > 0:
+            node.publishers["model_states"] = self._publish_states
+            self.sim.add_schedule("model_states", model_states_rate)
+        rospy.Subscriber("~set_model_state", ModelState, self._on_set_model_state, queue_size=10)
+        rospy.Subscriber("~set_link_state", LinkState, self._on_set_link_state, queue_size=10)
+        for name, srv_type, handler in (
+                ("get_model_state", GetModelState, self._get_model_state),
+                ("set_model_state", SetModelState, self._set_model_state),
+                ("get_link_state", GetLinkState, self._get_link_state),
+                ("set_link_state", SetLinkState, self._set_link_state),
+                ("get_world_properties", GetWorldProperties, self._get_world_properties),
+                ("get_model_properties", GetModelProperties, self._get_model_properties),
+                ("spawn_sdf_model", SpawnModel, self._spawner("sdf")),
+                ("spawn_urdf_model", SpawnModel, self._spawner("urdf")),
+                ("delete_model", DeleteModel, self._delete_model),
+                ("get_physics_properties", GetPhysicsProperties, self._get_physics),
+                ("set_physics_properties", SetPhysicsProperties, self._set_physics)):
+            rospy.Service("~" + name, srv_type, self._in_loop(name, handler))
+        self.reconfigure = None
+        try:
+            from .physics_reconfigure import PhysicsReconfigure
+        except ImportError as err:
+            rospy.logwarn("dynamic_reconfigure of the physics is off: %s", err)
+        else:
+            self.reconfigure = PhysicsReconfigure(self)
+
+    # --- running in the simulation loop ----------------------------------------------------------
+
+    def run_in_loop(self, action):
+        """Run ``action()`` in the simulation loop between two steps; return what it returns
+        (None if the loop did not answer within ANSWER_TIMEOUT)."""
+        result = []
+        done = threading.Event()
+
+        def run():
+            result.append(action())
+        self.node._requests.put((run, done))
+        self.node._wake.set()
+        if not done.wait(ANSWER_TIMEOUT):
+            return None
+        return result[0] if result else None
+
+    def _in_loop(self, name, handler):
+        """A service callback that runs ``handler(request)`` in the loop, never raising there."""
+        def call(request):
+            def action():
+                try:
+                    return handler(request)
+                except Exception as err:  # noqa: BLE001 - a request must never stop the loop
+                    rospy.logerr("%s: %s: %s", name, type(err).__name__, err)
+                    return None
+            response = self.run_in_loop(action)
+            if response is None:
+                raise rospy.ServiceException("%s: the simulation did not answer" % name)
+            return response
+        return call
+
+    def _enqueue(self, action):
+        """Run ``action()`` in the loop without waiting (topic twins of the services)."""
+        def run():
+            try:
+                action()
+            except RequestError as err:
+                rospy.logwarn_throttle(5.0, str(err))
+            except Exception as err:  # noqa: BLE001
+                rospy.logerr("%s: %s", type(err).__name__, err)
+        self.node._requests.put((run, threading.Event()))
+        self.node._wake.set()
+
+    # --- publishing --------------------------------------------------------------------------
+
+    def _publish_states(self, stamp) -> None:
+        model_pub, link_pub = self.pubs["model_states"], self.pubs["link_states"]
+        if model_pub.get_num_connections() > 0:
+            model_pub.publish(_states(ModelStates, self.control.model_states()))
+        if link_pub.get_num_connections() > 0:
+            link_pub.publish(_states(LinkStates, self.control.link_states()))
+
+    # --- handlers (run in the loop) ----------------------------------------------------------
+
+    def _get_model_state(self, req):
+        resp = GetModelStateResponse()
+        try:
+            pose, twist, seq = self.control.get_model_state(req.model_name,
+                                                            req.relative_entity_name)
+        except RequestError as err:
+            resp.success, resp.status_message = False, str(err)
+            return resp
+        resp.header.seq = seq
+        resp.header.stamp = rospy.Time(*divmod(self.sim.time_ns, 1_000_000_000))
+        resp.header.frame_id = req.relative_entity_name
+        fill_pose(resp.pose, pose)
+        fill_twist(resp.twist, twist)
+        resp.success, resp.status_message = True, "GetModelState: got properties"
+        return resp
+
+    def _set_model_state(self, req):
+        state = req.model_state
+        try:
+            self.control.set_model_state(state.model_name, pose_in(state.pose),
+                                         twist_in(state.twist), state.reference_frame)
+        except RequestError as err:
+            return SetModelStateResponse(False, str(err))
+        return SetModelStateResponse(True, "SetModelState: set model state done")
+
+    def _on_set_model_state(self, state: ModelState) -> None:
+        self._enqueue(lambda: self.control.set_model_state(
+            state.model_name, pose_in(state.pose), twist_in(state.twist), state.reference_frame))
+
+    def _get_link_state(self, req):
+        resp = GetLinkStateResponse()
+        try:
+            pose, twist = self.control.get_link_state(req.link_name, req.reference_frame)
+        except RequestError as err:
+            resp.success, resp.status_message = False, str(err)
+            return resp
+        resp.link_state.link_name = req.link_name
+        resp.link_state.reference_frame = req.reference_frame
+        fill_pose(resp.link_state.pose, pose)
+        fill_twist(resp.link_state.twist, twist)
+        resp.success, resp.status_message = True, "GetLinkState: got state"
+        return resp
+
+    def _set_link_state(self, req):
+        state = req.link_state
+        try:
+            self.control.set_link_state(state.link_name, pose_in(state.pose),
+                                        twist_in(state.twist), state.reference_frame)
+        except RequestError as err:
+            return SetLinkStateResponse(False, str(err))
+        return SetLinkStateResponse(True, "SetLinkState: set link state done")
+
+    def _on_set_link_state(self, state: LinkState) -> None:
+        self._enqueue(lambda: self.control.set_link_state(
+            state.link_name, pose_in(state.pose), twist_in(state.twist), state.reference_frame))
+
+    def _get_world_properties(self, _req):
+        return GetWorldPropertiesResponse(sim_time=self.sim.time,
+                                          model_names=self.sim.models.names(),
+                                          rendering_enabled=True, success=True,
+                                          status_message="GetWorldProperties: got properties")
+
+    def _get_model_properties(self, req):
+        resp = GetModelPropertiesResponse()
+        try:
+            props = self.control.model_properties(req.model_name)
+        except RequestError as err:
+            resp.success, resp.status_message = False, str(err)
+            return resp
+        resp.body_names, resp.geom_names = props.body_names, props.geom_names
+        resp.joint_names, resp.is_static = props.joint_names, props.is_static
+        resp.success, resp.status_message = True, "GetModelProperties: got properties"
+        return resp
+
+    def _spawner(self, kind):
+        def spawn(req):
+            try:
+                self.control.spawn(req.model_name, req.model_xml, pose_in(req.initial_pose),
+                                   req.reference_frame, kind)
+            except RequestError as err:
+                return SpawnModelResponse(False, str(err))
+            return SpawnModelResponse(True, "SpawnModel: Successfully spawned entity")
+        return spawn
+
+    def _delete_model(self, req):
+        try:
+            self.control.delete(req.model_name)
+        except RequestError as err:
+            return DeleteModelResponse(False, str(err))
+        return DeleteModelResponse(True, "DeleteModel: successfully deleted model")
+
+    def _get_physics(self, _req):
+        props = self.control.physics_properties()
+        resp = GetPhysicsPropertiesResponse(time_step=props.time_step, pause=self.node.paused,
+                                            max_update_rate=props.max_update_rate,
+                                            ode_config=ode_msg(props.ode), success=True,
+                                            status_message="GetPhysicsProperties: got properties")
+        resp.gravity.x, resp.gravity.y, resp.gravity.z = props.gravity
+        return resp
+
+    def _set_physics(self, req):
+        g = req.gravity
+        props = PhysicsProperties(req.time_step, req.max_update_rate, (g.x, g.y, g.z),
+                                  ode_in(req.ode_config))
+        try:
+            self.apply_physics(props)
+        except RequestError as err:
+            return SetPhysicsPropertiesResponse(False, str(err))
+        return SetPhysicsPropertiesResponse(True, "physics engine updated")
+
+    def apply_physics(self, props: PhysicsProperties) -> None:
+        """Apply ``props`` (in the loop): the sim's step and engine, then the pacing."""
+        self.control.set_physics_properties(props)
+        self.node.pacer.set_rtf(props.real_time_factor, self.sim.time)

@@ -1,0 +1,122 @@
+"""A spawn request's model_xml, checked and turned into what the world builder builds. No ROS.
+
+Two kinds, as Gazebo's spawn services take them (gazebo_api.md 2.4):
+- SDF: ``<sdf>`` (or ``<gazebo>``) holding one ``<model>`` of primitive shapes (world_sdf's
+  subset): it becomes a ``World`` of that one model, renamed and placed;
+- URDF: ``<robot>`` of links and joints with box, cylinder or sphere geometry and no robot
+  plugins: it becomes URDF text with the requested name, which pybullet loads.
+Refused, with one line saying why (a RequestError whose text is the service's status message):
+text over ``MAX_XML_BYTES``, nesting deeper than world_sdf.MAX_XML_DEPTH, a DOCTYPE, malformed
+XML (with its line), an unknown root, meshes, plugins.
+"""
+from dataclasses import dataclass
+from typing import Optional
+from xml.etree import ElementTree
+
+from ..errors import WorldError
+from . import reference_frames as rf
+from .world_models import RequestError
+from .world_sdf import World, load_model_xml, parse_xml
+
+MAX_XML_BYTES = 1_000_000
+URDF_GEOMETRY = ("box", "cylinder", "sphere")
+PREFIX = "SpawnModel: Failure - "
+
+
+@dataclass
+class SpawnRequest:
+    """A parsed spawn: exactly one of ``world`` (SDF) and ``urdf`` (URDF text) is set."""
+
+    name: str
+    world: Optional[World] = None
+    urdf: Optional[str] = None
+
+
+def _check_size(xml: str) -> None:
+    if len(xml) > MAX_XML_BYTES:
+        raise RequestError(PREFIX + "model_xml is %d characters, more than the %d allowed"
+                           % (len(xml), MAX_XML_BYTES))
+    if not xml.strip():
+        raise RequestError(PREFIX + "model_xml is empty")
+
+
+def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf") -> SpawnRequest:
+    """Check and parse a spawn of ``xml`` as model ``name`` at world ``pose``. ``kind`` is the
+    service called: "sdf" takes SDF or URDF (as Gazebo's spawn_sdf_model does), "urdf" only
+    URDF."""
+    _check_size(xml)
+    try:
+        root = parse_xml(xml, "model_xml")
+    except WorldError as err:
+        raise RequestError(PREFIX + str(err)) from None
+    if root.tag == "robot":
+        return SpawnRequest(name, urdf=_urdf(name, xml))
+    if kind == "urdf":
+        raise RequestError(PREFIX + "spawn_urdf_model needs a <robot> root element, got <%s>"
+                           % root.tag)
+    if root.tag not in ("sdf", "gazebo"):
+        raise RequestError(PREFIX + "model_xml: the root element is <%s>: expected <sdf> or "
+                                    "<robot>" % root.tag)
+    roll, pitch, yaw = rf.rpy_from_quat(pose[1])
+    try:
+        world = load_model_xml(xml, "model_xml", name, tuple(pose[0]) + (roll, pitch, yaw))
+    except WorldError as err:
+        raise RequestError(PREFIX + str(err)) from None
+    for shape in world.shapes:
+        if not shape.static and shape.kind not in URDF_GEOMETRY:
+            raise RequestError(PREFIX + "%s: a %s cannot be part of a model that is not "
+                                        "<static>" % (shape.name, shape.kind))
+    return SpawnRequest(name, world=world)
+
+
+def _urdf(name: str, xml: str) -> str:
+    """The URDF text renamed ``name``; RequestError for what this simulator cannot load."""
+    try:
+        robot = ElementTree.fromstring(xml)
+    except ElementTree.ParseError as err:
+        raise RequestError(PREFIX + "model_xml: malformed XML: %s" % err) from None
+    for gazebo in robot.iter("gazebo"):
+        if gazebo.find(".//plugin") is not None:
+            raise RequestError(PREFIX + "URDF robot plugins (<gazebo><plugin>) are not "
+                                        "supported: spawn links and joints only")
+    links = robot.findall("link")
+    if not links:
+        raise RequestError(PREFIX + "the URDF <robot> has no <link>")
+    names = [link.get("name", "") for link in links]
+    if "" in names or len(set(names)) != len(names):
+        raise RequestError(PREFIX + "every URDF <link> needs a unique name")
+    children = set()
+    for joint in robot.findall("joint"):
+        parent, child = joint.find("parent"), joint.find("child")
+        for end in (parent, child):
+            if end is None or end.get("link") not in names:
+                raise RequestError(PREFIX + "URDF joint %r: parent and child must name links"
+                                   % joint.get("name", ""))
+        children.add(child.get("link"))
+    roots = [n for n in names if n not in children]
+    if len(roots) != 1:
+        raise RequestError(PREFIX + "the URDF must have exactly one root link, it has %d"
+                           % len(roots))
+    for link in links:
+        for element in link:
+            geometry = element.find("geometry") if element.tag in ("collision", "visual") else None
+            for shape in (geometry if geometry is not None else ()):
+                if shape.tag not in URDF_GEOMETRY:
+                    raise RequestError(PREFIX + "URDF link %r: <%s> geometry is not supported "
+                                                "(only %s)" % (link.get("name"), shape.tag,
+                                                               ", ".join(URDF_GEOMETRY)))
+    robot.set("name", name)
+    for gazebo in robot.findall("gazebo"):
+        robot.remove(gazebo)
+    return ElementTree.tostring(robot, encoding="unicode")
+
+
+def placed(pose: rf.Pose, frame: Optional[rf.Pose]) -> rf.Pose:
+    """The world pose of a spawn's ``initial_pose`` given in ``frame`` (None: the world), its
+    quaternion normalised (all-zero: identity). ValueError for NaN or inf."""
+    position, orientation = pose
+    if not rf.finite(position, orientation):
+        raise ValueError("initial_pose has NaN or infinite values")
+    pose = (tuple(position), rf.normalized(orientation))
+    return pose if frame is None else rf.compose(frame, pose)
+

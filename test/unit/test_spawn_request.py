@@ -1,0 +1,116 @@
+"""Spawn requests: SDF and URDF model_xml, name rules, refusals (sim/spawn_request). No ROS."""
+import math
+
+import pytest
+
+from tutorial_turtlebot.sim import reference_frames as rf
+from tutorial_turtlebot.sim.package_data import data_dir
+from tutorial_turtlebot.sim.spawn_request import MAX_XML_BYTES, parse_spawn, placed
+from tutorial_turtlebot.sim.world_models import RequestError, check_model_name
+
+BOX = """<sdf version="1.6">
+  <model name="box">
+    <pose>0 0 0.1 0 0 0</pose>
+    <link name="link">
+      <inertial><mass>0.2</mass><inertia><ixx>0.001</ixx><iyy>0.002</iyy><izz>0.003</izz></inertia></inertial>
+      <collision name="c">
+        <geometry><box><size>0.2 0.2 0.2</size></box></geometry>
+        <surface><friction><ode><mu>0.4</mu></ode></friction></surface>
+      </collision>
+      <visual name="v"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></visual>
+    </link>
+  </model>
+</sdf>"""
+
+URDF = """<?xml version="1.0"?>
+<robot name="anything">
+  <link name="base"><collision><geometry><cylinder radius="0.1" length="0.2"/></geometry></collision></link>
+  <link name="top"><visual><geometry><sphere radius="0.05"/></geometry></visual></link>
+  <joint name="hinge" type="continuous"><parent link="base"/><child link="top"/></joint>
+</robot>"""
+
+
+def at(x, y, yaw=0.0):
+    return (x, y, 0.0), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+
+
+def test_sdf_model_renamed_and_placed_with_its_inertial_and_friction():
+    request = parse_spawn("crate", BOX, at(1.0, 2.0, math.pi / 2))
+    world = request.world
+    assert request.urdf is None and world.models == ("crate",)
+    model = world.model("crate")
+    assert not model.static and [l.scoped for l in model.links] == ["crate::link"]
+    assert model.pose[:3] == pytest.approx((1.0, 2.0, 0.1))    # initial_pose * <pose>
+    assert model.pose[5] == pytest.approx(math.pi / 2)
+    link = model.links[0]
+    assert link.inertial.mass == 0.2
+    assert link.inertial.inertia[:3] == (0.001, 0.002, 0.003)
+    collision = world.shape("crate::link::c")
+    assert collision.mu == 0.4 and collision.link == "crate::link"
+
+
+def test_sdf_defaults_are_gazebos():
+    xml = BOX.replace("<inertial><mass>0.2</mass><inertia><ixx>0.001</ixx><iyy>0.002</iyy>"
+                      "<izz>0.003</izz></inertia></inertial>", "").replace(
+                          "<surface><friction><ode><mu>0.4</mu></ode></friction></surface>", "")
+    world = parse_spawn("b", xml).world
+    inertial = world.model("b").links[0].inertial
+    assert (inertial.mass, inertial.inertia) == (1.0, (1.0, 1.0, 1.0, 0.0, 0.0, 0.0))
+    assert world.shape("b::link::c").mu == 1.0
+
+
+def test_the_goal_box_file():
+    with open(data_dir("models") + "/goal_box/model.sdf") as f:
+        world = parse_spawn("goal", f.read(), at(0.6, 0.0)).world
+    model = world.model("goal")
+    assert model.static and world.collisions == ()
+    assert model.pose[5] == pytest.approx(-1.5708)
+
+
+def test_urdf_without_plugins():
+    request = parse_spawn("thing", URDF, kind="urdf")
+    assert request.world is None and 'name="thing"' in request.urdf
+    assert parse_spawn("thing", URDF, kind="sdf").urdf    # spawn_sdf_model takes URDF too
+
+
+@pytest.mark.parametrize("xml, words", [
+    ("<sdf><model name='m'><link name='l'></model></sdf>", "model_xml:1: malformed XML"),
+    ("<sdf>\n<model name='m'>\n<link name='l'>\n<visual name='v'><geometry><mesh/></geometry>"
+     "</visual></link></model></sdf>", "model_xml:4: unsupported geometry <mesh>"),
+    ("<world/>", "root element is <world>"),
+    ("<sdf><model name='a'/><model name='b'/></sdf>", "exactly one <model>"),
+    ("", "empty"),
+    ("<!DOCTYPE x [<!ENTITY a 'aaaa'>]><sdf/>", "DOCTYPE"),
+    ("<sdf>" + "<model name='m'>" * 100 + "</model>" * 100 + "</sdf>", "nested more than"),
+    ("<sdf>" + " " * (MAX_XML_BYTES + 1) + "</sdf>", "more than the 1000000 allowed"),
+    (URDF.replace("</robot>", "<gazebo><plugin name='p' filename='libx.so'/></gazebo></robot>"),
+     "plugins"),
+    (URDF.replace("<sphere radius=\"0.05\"/>", "<mesh filename='package://x/y.stl'/>"),
+     "<mesh> geometry is not supported"),
+    (URDF.replace('<parent link="base"/>', '<parent link="nowhere"/>'), "must name links"),
+])
+def test_refused_with_one_line(xml, words):
+    with pytest.raises(RequestError) as err:
+        parse_spawn("m", xml)
+    text = str(err.value)
+    assert text.startswith("SpawnModel: Failure - ") and words in text and "\n" not in text
+
+
+def test_urdf_service_needs_a_robot():
+    with pytest.raises(RequestError, match="needs a <robot>"):
+        parse_spawn("m", BOX, kind="urdf")
+
+
+@pytest.mark.parametrize("name", ["", " x", "a b", "m::l"])
+def test_bad_names(name):
+    with pytest.raises(RequestError):
+        check_model_name(name)
+
+
+def test_placed_in_a_frame_and_refusing_nan():
+    frame = at(1.0, 0.0, math.pi / 2)
+    (p, q) = placed(((1.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0)), frame)   # all-zero quaternion
+    assert p == pytest.approx((1.0, 1.0, 0.0))
+    assert q == pytest.approx(frame[1])
+    with pytest.raises(ValueError):
+        placed(((float("nan"), 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)), None)
