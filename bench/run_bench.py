@@ -13,6 +13,9 @@ Measured (Burger in turtlebot3_world unless said):
                     the gap between their stamps (p50, p99, max in ms; bench/jitter.py)
   fast              real_time_factor 0, every sensor subscribed / only /odom: achieved factor
   physics bound     the same world and robot stepped by pybullet with no ROS (and no sensors)
+  world API         every sensor and /gazebo/model_states subscribed (CPU at real time, factor
+                    as fast as possible); spawn and delete round trips; stage 1 with a
+                    turtlebot3_dqn-style client: environment steps per wall second
   scaling           real_time_factor 0, 1 / 4 / 8 subscribers to /scan: achieved factor
 """
 import argparse
@@ -33,6 +36,7 @@ TARGETS = {
     "rt_cpu": "<= 10 %",
     "rt_mem": "<= 200 MB",
     "fast_all": ">= 20x",
+    "rt_cpu_states": "<= 12 %",
 }
 
 
@@ -45,10 +49,13 @@ def free_port() -> int:
 class SimRun:
     """One roslaunch of sim.launch on its own master, plus helper processes."""
 
-    def __init__(self, launch_args, model="burger", world="turtlebot3_world"):
+    def __init__(self, launch_args, model="burger", world="turtlebot3_world",
+                 launch="sim.launch"):
         self.port = free_port()
         self.env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % self.port)
-        self.args = ["model:=%s" % model, "world:=%s" % world, "status_period:=0"] + launch_args
+        self.launch_file = launch
+        self.args = (["model:=%s" % model, "status_period:=0"] + launch_args
+                     + (["world:=%s" % world] if launch == "sim.launch" else []))
         self.procs = []
         self.launch = None
 
@@ -61,7 +68,8 @@ class SimRun:
 
     def start(self):
         self.launch = subprocess.Popen(
-            ["roslaunch", "-p", str(self.port), "tutorial_turtlebot", "sim.launch"] + self.args,
+            ["roslaunch", "-p", str(self.port), "tutorial_turtlebot", self.launch_file]
+            + self.args,
             env=self.env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
             start_new_session=True)
         self.procs.append(self.launch)
@@ -198,6 +206,41 @@ def measure_jitter(seconds=10.0, warmup=3.0):
         run.stop()
 
 
+def measure_world_calls(count=20):
+    """(spawn ms, delete ms): median wall time of a service round trip from another process."""
+    run = SimRun([])
+    try:
+        run.start()
+        run.sim_pid()
+        probe = run.start_helper("world_calls.py", str(count))
+        for line in probe.stdout:
+            fields = line.split()
+            if len(fields) == 2:
+                return float(fields[0]), float(fields[1])
+        raise RuntimeError("world_calls.py said nothing")
+    finally:
+        run.stop()
+
+
+def measure_stage_client(seconds=20.0):
+    """Environment steps per wall second of a turtlebot3_dqn-style client (one step per scan,
+    reset_simulation and a goal respawned every episode) on stage 1, 24 samples, as fast as
+    possible."""
+    run = SimRun(["real_time_factor:=0", "lidar_samples:=24"], launch="turtlebot3_stage_1.launch")
+    try:
+        run.start()
+        run.sim_pid()
+        probe = run.start_helper("stage_client.py", "%g" % seconds)
+        for line in probe.stdout:
+            try:
+                return float(line)
+            except ValueError:
+                continue
+        raise RuntimeError("stage_client.py said nothing")
+    finally:
+        run.stop()
+
+
 def physics_bound(seconds=20.0) -> float:
     """Real-time factor of the Simulation stepped with no ROS and no sensors."""
     from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
@@ -276,6 +319,19 @@ def main():
     fast_all = median([measure_running(0, ALL_SENSORS)[0] for _ in range(args.runs)])
     row("as fast as possible, every sensor subscribed", "%.1f" % fast_all, "x",
         TARGETS["fast_all"])
+    with_states = ALL_SENSORS + ["/gazebo/model_states"]
+    rt_states = [measure_running(1.0, with_states) for _ in range(args.runs)]
+    row("real time, every sensor and /gazebo/model_states subscribed: sim CPU",
+        "%.1f" % median([r[1] for r in rt_states]), "% core", TARGETS["rt_cpu_states"])
+    row("as fast as possible, every sensor and /gazebo/model_states subscribed",
+        "%.1f" % median([measure_running(0, with_states)[0] for _ in range(args.runs)]), "x",
+        TARGETS["fast_all"])
+    calls = [measure_world_calls() for _ in range(args.runs)]
+    row("spawn_sdf_model / delete_model round trip (median of 20)",
+        "%.0f / %.0f" % (median([c[0] for c in calls]), median([c[1] for c in calls])), "ms",
+        "each < 50 ms")
+    row("stage 1, DQN-style client stepping once per scan (24 samples, max speed)",
+        "%.1f" % median([measure_stage_client() for _ in range(args.runs)]), "steps/s")
     fast_odom = median([measure_running(0, ["/odom"])[0] for _ in range(args.runs)])
     row("as fast as possible, only /odom subscribed", "%.1f" % fast_odom, "x")
     bound = median([physics_bound() for _ in range(args.runs)])

@@ -9,13 +9,15 @@ import sys
 import time
 
 import rospy
+from gazebo_msgs.msg import ModelStates
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Image, Imu, JointState, LaserScan
 from tf2_msgs.msg import TFMessage
 
 TYPES = {"/scan": LaserScan, "/odom": Odometry, "/imu": Imu, "/joint_states": JointState,
-         "/tf": TFMessage, "/camera/rgb/image_raw": Image, "/camera/image": Image}
+         "/tf": TFMessage, "/camera/rgb/image_raw": Image, "/camera/image": Image,
+         "/gazebo/model_states": ModelStates}
 
 
 class Counter:

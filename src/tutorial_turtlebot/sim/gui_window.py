@@ -21,6 +21,9 @@ def open_window() -> int:
             for panel in _PANELS:
                 pybullet.configureDebugVisualizer(getattr(pybullet, panel), 0,
                                                   physicsClientId=client)
+            # The window's thread says hello ("ven = Mesa/X.org") once its OpenGL is up, after
+            # connect returns: a round trip through that thread waits for it.
+            pybullet.getDebugVisualizerCamera(physicsClientId=client)
     return client
 
 
