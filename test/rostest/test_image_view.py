@@ -174,7 +174,9 @@ class ImageViewTest(unittest.TestCase):
             % (width, height), accept=lambda m: float(m.group(1)) >= MIN_RATE[self.model])
         rate = float(match.group(1))
         rospy.loginfo("window %r, %dx%d at (%d, %d)", match.string, win_w, win_h, x, y)
-        self.assertLessEqual(rate, 40.0, match.string)
+        # Up to 30 a second at real time; more for a moment while a sim that fell behind (a
+        # busy machine) catches up, never as many as an unpaced sim sends.
+        self.assertLessEqual(rate, 60.0, match.string)
         if width <= SCREEN[0] - 40 and height <= SCREEN[1] - 80:
             self.assertEqual((win_w, win_h), (width, height))
             self.assertNotIn("shown at", match.string)

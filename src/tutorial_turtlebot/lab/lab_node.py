@@ -1,6 +1,7 @@
 """ROS glue shared by the lab nodes: checked parameters, the robot model, safe cmd_vel."""
 import math
 import os
+import signal
 import sys
 import threading
 import time
@@ -63,6 +64,19 @@ def model_name() -> str:
         rospy.logwarn("unknown TurtleBot3 model %r from %s: valid models are %s"
                       % (model, source, ", ".join(MODEL_NAMES)))
     return str(model)
+
+
+def shut_down_on_signals() -> None:
+    """Ctrl-C and SIGTERM shut ROS down from a thread of their own, for a node started with
+    ``init_node(..., disable_signals=True)`` that publishes from its main thread. rospy's own
+    handler runs the shutdown hooks inside the interrupted main thread: if that thread was in
+    the middle of CommandPublisher.publish, the hook's zero Twist waited for the lock it held,
+    forever. From another thread it waits only until the interrupted publish is done."""
+    def handler(signum, _frame):
+        threading.Thread(target=rospy.signal_shutdown,
+                         args=("signal %d" % signum,), name="shutdown").start()
+    signal.signal(signal.SIGINT, handler)
+    signal.signal(signal.SIGTERM, handler)
 
 
 class CommandPublisher:

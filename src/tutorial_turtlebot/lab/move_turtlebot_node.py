@@ -20,7 +20,8 @@ import sys
 import rospy
 
 from ..errors import UserError
-from .lab_node import CommandPublisher, model_name, number_param
+from .lab_node import (CommandPublisher, model_name, number_param,
+                       shut_down_on_signals)
 from .move_args import (SETTINGS, USAGE, command_line_settings, parse, user_args,
                         wants_help)
 from ..sim.robot_models import model_limits
@@ -34,8 +35,9 @@ class MoveTurtlebot:
         self.angular = angular
         self.publisher = CommandPublisher()
 
-    def run(self, rate_hz: float, duration: float) -> None:
-        """Publish at ``rate_hz`` until shutdown, or for ``duration`` s of ROS time if > 0."""
+    def run(self, rate_hz: float, duration: float) -> bool:
+        """Publish at ``rate_hz`` until shutdown, or for ``duration`` s of ROS time if > 0;
+        True when the duration is done."""
         rate = rospy.Rate(rate_hz, reset=True)
         rospy.sleep(0)  # under /use_sim_time: wait for the first /clock
         start = rospy.get_time()
@@ -44,9 +46,10 @@ class MoveTurtlebot:
             start = min(start, now)  # the simulation was reset: count again
             if 0 < duration <= now - start:
                 rospy.loginfo("%g s done, stopping", duration)
-                return
+                return True
             self.publisher.publish(self.linear, self.angular)
             rate.sleep()
+        return False
 
 
 def main(argv=None) -> None:
@@ -63,7 +66,8 @@ def main(argv=None) -> None:
         sys.exit(2)
 
     settings, ros_argv = command_line_settings(argv)
-    rospy.init_node("move_turtlebot", argv=ros_argv)
+    rospy.init_node("move_turtlebot", argv=ros_argv, disable_signals=True)
+    shut_down_on_signals()
     for name in sorted(set(settings) - set(SETTINGS)):
         rospy.logwarn("_%s:=%s ignored: move_turtlebot's settings are %s"
                       % (name, settings[name], ", ".join("_%s" % s for s in SETTINGS)))
@@ -80,7 +84,8 @@ def main(argv=None) -> None:
                   % (linear, angular, node.publisher.topic, rate_hz,
                      " for %g s" % duration if duration else "; Ctrl-C stops"))
     try:
-        node.run(rate_hz, duration)
+        done = node.run(rate_hz, duration)
     except rospy.ROSInterruptException:
         return  # Ctrl-C: the shutdown hook publishes the zero Twist
-    rospy.signal_shutdown("duration done")
+    if done:
+        rospy.signal_shutdown("duration done")
