@@ -155,7 +155,8 @@ class SimNode:
                              ("reset_world", sim.reset_world),
                              ("pause_physics", self._pause), ("unpause_physics", self._unpause)):
             rospy.Service("~" + name, Empty, self._service_handler(name, action))
-        # Gazebo's world API: model/link states, spawn, delete, physics (gazebo/world_api.py).
+        # Gazebo's world API: model/link states, spawn, delete, physics (gazebo/world_api.py);
+        # advertised after every sensor topic (test_camera.py waits for it as the last).
         self.world_api = WorldApi(self, _param("model_states_rate", 100.0, float))
 
     def _publisher(self, topic, msg_type, queue_size=1) -> rospy.Publisher:
