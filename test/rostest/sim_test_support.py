@@ -126,6 +126,19 @@ def executable(name: str, package: str = "tutorial_turtlebot") -> str:
     return found[0]
 
 
+def stop_process(proc, timeout: float = 20.0) -> None:
+    """Stop a subprocess.Popen as Ctrl-C does (SIGINT, after SIGCONT in case it was
+    suspended); kill it if it is still there after ``timeout`` wall s."""
+    if proc.poll() is None:
+        proc.send_signal(signal.SIGCONT)
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait(10.0)
+
+
 class NodeProcess:
     """A package node started as ``rosrun PACKAGE NAME ARGS`` would start it, with stdin from
     /dev/null and stdout and stderr collected; stopped with a signal as Ctrl-C stops it."""
@@ -227,6 +240,12 @@ class PtyProcess:
             return self.proc.wait(timeout)
         except subprocess.TimeoutExpired:
             return None
+
+    def quit(self) -> None:
+        """Ctrl-C, a moment to exit, then close (for tearDown)."""
+        self.send("\x03")
+        self.wait(10.0)
+        self.close()
 
     def close(self) -> None:
         """Make sure the program is gone, then close the terminal."""

@@ -21,7 +21,7 @@ import rosgraph
 import rospy
 import rostest
 
-from sim_test_support import NodeProcess, PtyProcess, wait_for
+from sim_test_support import NodeProcess, PtyProcess, stop_process, wait_for
 
 TELEOP = "/turtlebot3_teleop_keyboard"
 STUCK = "/graph_test_stuck"
@@ -47,9 +47,7 @@ class GraphTest(unittest.TestCase):
 
     @classmethod
     def tearDownClass(cls):
-        cls.term.send("\x03")
-        cls.term.wait(10.0)
-        cls.term.close()
+        cls.term.quit()
         shutil.rmtree(cls.folder, ignore_errors=True)
 
     def graph(self, *args, env=None):
@@ -149,13 +147,7 @@ class GraphTest(unittest.TestCase):
                 self.assertIn('URL="%s (DEAD)", tooltip="%s (DEAD)", color="red"'
                               % (STUCK, STUCK), dot.read())
         finally:
-            stuck.send_signal(signal.SIGCONT)
-            stuck.send_signal(signal.SIGINT)
-            try:
-                stuck.wait(10.0)
-            except subprocess.TimeoutExpired:
-                stuck.kill()
-                stuck.wait(5.0)
+            stop_process(stuck, 10.0)
 
     def test_5_no_master(self):
         env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % free_port())

@@ -32,7 +32,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from sim_test_support import Driver, wait_for
+from sim_test_support import Driver, stop_process, wait_for
 
 WAIT = 90.0  # wall s for start-up: the sim, robot_state_publisher and RViz on a busy machine
 BACKGROUND = (48, 48, 48)  # Global Options/Background Color of rviz/turtlebot3*.rviz
@@ -207,13 +207,7 @@ class RvizTest(unittest.TestCase):
     @classmethod
     def tearDownClass(cls):
         for proc in cls.procs:  # roslaunch first (it stops the sim and RViz), then Xvfb
-            if proc.poll() is None:
-                proc.send_signal(signal.SIGINT)
-                try:
-                    proc.wait(20.0)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
-                    proc.wait(10.0)
+            stop_process(proc)
         shutil.rmtree(cls.runtime_dir, ignore_errors=True)
 
     def view(self):

@@ -52,9 +52,7 @@ class SimTeleopGraphTest(unittest.TestCase):
 
     @classmethod
     def tearDownClass(cls):
-        cls.term.send("\x03")
-        cls.term.wait(10.0)
-        cls.term.close()
+        cls.term.quit()
 
     def graph(self):
         """(publishers, subscribers): topic -> set of node names, from the master."""
