@@ -338,8 +338,9 @@ class SimNode:
                 backlog.hold()
                 self._publish_due(due)
                 backlog.keep_until(pacer.wall_of(sim.time))
-            if pacer.ahead(sim.time) >= pacer.MIN_SLEEP:
-                self._send_on_time_until(pacer.wall_of(sim.time))
+            batch_end = pacer.batch_end(sim.time)
+            if batch_end is not None:
+                self._send_on_time_until(batch_end)
 
     def _send_on_time_until(self, wall_time: float) -> None:
         """Sleep until ``wall_time`` (the clock), sending each kept group of messages at its

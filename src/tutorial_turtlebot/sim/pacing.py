@@ -2,9 +2,9 @@
 
 The simulator owns the clock: it steps physics as fast as it can and, with a real-time factor
 ``rtf`` > 0, sleeps once sim time runs ``MIN_SLEEP`` ahead of ``rtf`` x wall time, until wall
-time has caught up. ``wall_of`` says when (wall) a sim time is due, so a caller can send what it
-made ahead at its moment (``sleep_until``) while physics itself runs in batches. ``rtf`` 0 means
-never sleep. Times in seconds (float) from ``time.monotonic``.
+time has caught up (``batch_end``). ``wall_of`` says when (wall) a sim time is due, so the loop
+sends what it made ahead at its moment (``sleep_until``) while physics itself runs in batches.
+``rtf`` 0 means never sleep. Times in seconds (float) from ``time.monotonic``.
 """
 import time
 from typing import Callable, Optional
@@ -69,11 +69,12 @@ class Pacer:
         if delay >= self.SHORTEST_SLEEP:
             self._sleep(delay)
 
-    def wait(self, sim_time: float) -> None:
-        """Once ``sim_time`` is ``min_sleep`` or more ahead, sleep until the clock catches up."""
-        ahead = self.ahead(sim_time)
-        if ahead >= self._min_sleep:
-            self._sleep(ahead)
+    def batch_end(self, sim_time: float) -> Optional[float]:
+        """The wall time to sleep until once ``sim_time`` runs ``min_sleep`` or more ahead of
+        the clock (the batch of steps is done), else None: step on."""
+        if self.ahead(sim_time) >= self._min_sleep:
+            return self.wall_of(sim_time)
+        return None
 
     def achieved(self, sim_time: float) -> Optional[float]:
         """Factor achieved since the last call (None if no wall time passed); starts a new window."""
