@@ -20,11 +20,21 @@ from tutorial_turtlebot.sim.camera import (BACKGROUND_RGB, CameraIntrinsics, Cam
                                        depth_image, jpeg_bytes, pointcloud_bytes,
                                        pointcloud_xyz, validate_spec, view_matrix)
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.sim.robot_models import AUTORACE_CAMERA, MODELS, CameraSpec
+from tutorial_turtlebot.sim.robot_plugins import CameraSpec
+from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
 from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world_bullet import WORLD_COLLISION_GROUP
 
 OPTICAL_FRAME = "camera_rgb_optical_frame"
+
+
+def urdf_camera(model, autorace=False):
+    """The CameraSpec the model's URDF declares (the AutoRace burger's with ``autorace``)."""
+    return read_urdf(urdf_path(model, autorace)).plugins.camera.spec
+
+
+CAMERAS = {"waffle": urdf_camera("waffle"), "waffle_pi": urdf_camera("waffle_pi")}
+AUTORACE_CAMERA = urdf_camera("burger", autorace=True)
 RENDERERS = ("tiny", "egl")
 GREEN_BODIES = ("head", "left_hand", "right_hand", "left_foot", "right_foot")
 
@@ -32,7 +42,7 @@ GREEN_BODIES = ("head", "left_hand", "right_hand", "left_foot", "right_foot")
 # --- CameraInfo ----------------------------------------------------------------------------------
 
 def test_waffle_pi_intrinsics():
-    k = CameraIntrinsics.from_spec(MODELS["waffle_pi"].camera)
+    k = CameraIntrinsics.from_spec(CAMERAS["waffle_pi"])
     assert (k.width, k.height) == (640, 480)
     assert k.fx == k.fy == pytest.approx(530.47, abs=0.01)
     assert (k.cx, k.cy) == (320.5, 240.5)
@@ -40,7 +50,7 @@ def test_waffle_pi_intrinsics():
 
 
 def test_waffle_intrinsics():
-    k = CameraIntrinsics.from_spec(MODELS["waffle"].camera)
+    k = CameraIntrinsics.from_spec(CAMERAS["waffle"])
     assert (k.width, k.height) == (1920, 1080)
     assert k.f == pytest.approx(1206.89, abs=0.01)
     assert (k.cx, k.cy) == (960.5, 540.5)
@@ -50,11 +60,11 @@ def test_autorace_intrinsics():
     k = CameraIntrinsics.from_spec(AUTORACE_CAMERA)
     assert (k.width, k.height, k.cx, k.cy) == (320, 240, 160.5, 120.5)
     assert k.f == pytest.approx(320 / (2 * math.tan(1.085595 / 2)))
-    assert k.P()[3] == 0.0
+    assert k.P()[3] == pytest.approx(-k.f * 0.07)  # hackBaseline 0.07, as its gazebo.xacro
 
 
 def test_camera_info_matrices():
-    k = CameraIntrinsics.from_spec(MODELS["waffle_pi"].camera)
+    k = CameraIntrinsics.from_spec(CAMERAS["waffle_pi"])
     f = k.f
     assert k.K() == [f, 0, 320.5, 0, f, 240.5, 0, 0, 1]
     assert k.R() == [1, 0, 0, 0, 1, 0, 0, 0, 1]
@@ -65,7 +75,7 @@ def test_camera_info_matrices():
 
 # --- validation ----------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("spec", [m.camera for m in MODELS.values() if m.camera]
+@pytest.mark.parametrize("spec", list(CAMERAS.values())
                          + [AUTORACE_CAMERA, CameraSpec(1, 1, 0.01, 1.0),
                             CameraSpec(4096, 4096, 3.14, 30.0)])
 def test_valid_cameras_pass(spec):
@@ -87,7 +97,7 @@ def test_valid_cameras_pass(spec):
     ({"rate": 0.0}, "rate"),
 ])
 def test_impossible_cameras_are_refused_in_one_line(changes, words):
-    spec = dataclasses.replace(MODELS["waffle_pi"].camera, **changes)
+    spec = dataclasses.replace(CAMERAS["waffle_pi"], **changes)
     with pytest.raises(UserError) as err:
         validate_spec(spec)
     assert words in str(err.value) and "\n" not in str(err.value)
@@ -192,8 +202,8 @@ def _cast(sim, position, ends):
 
 def test_waffle_pi_sees_the_green_head_where_it_is(waffle_pi):
     sim, egl = waffle_pi
-    spec = sim.spec.camera
-    position, rotation = sim.physics.frame_pose(OPTICAL_FRAME)
+    spec = sim.camera_spec
+    position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
     assert position[:2] == pytest.approx((-1.924, -0.5), abs=0.002)   # spawn + camera offset
     rgb, depth = CameraRenderer(sim.physics.client, spec, use_egl=egl).render(
         position, rotation, depth=True)
@@ -219,8 +229,8 @@ def test_waffle_pi_sees_the_green_head_where_it_is(waffle_pi):
 
 def test_image_is_right_side_up(waffle_pi):
     sim, egl = waffle_pi
-    spec = sim.spec.camera
-    position, rotation = sim.physics.frame_pose(OPTICAL_FRAME)
+    spec = sim.camera_spec
+    position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
     rgb, depth = CameraRenderer(sim.physics.client, spec, use_egl=egl).render(
         position, rotation, depth=True)
     # Above the arena walls, the background; below the horizon, the floor at the depth its
@@ -249,8 +259,8 @@ def test_depth_matches_the_geometry(waffle_pi):
     """Over a grid of pixels, depth is the distance along the optical axis to what a ray through
     the pixel meets (away from edges, where a pixel may show either side)."""
     sim, egl = waffle_pi
-    spec = sim.spec.camera
-    position, rotation = sim.physics.frame_pose(OPTICAL_FRAME)
+    spec = sim.camera_spec
+    position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
     _, depth = CameraRenderer(sim.physics.client, spec, use_egl=egl).render(
         position, rotation, depth=True)
     grid = [(c, r) for r in range(6, 480, 12) for c in range(6, 640, 12)]
@@ -271,13 +281,13 @@ def test_depth_matches_the_geometry(waffle_pi):
 def test_the_robot_stays_out_of_its_own_view(monkeypatch, renderer, model):
     sim = _simulation(monkeypatch, model, renderer)
     try:
-        spec = sim.spec.camera or sim.spec.optional_camera
+        spec = sim.camera_spec
         if renderer == "tiny" and spec.width > 640:      # TinyRenderer: a quarter of the pixels
             spec = dataclasses.replace(spec, width=spec.width // 2, height=spec.height // 2)
         view = CameraRenderer(sim.physics.client, spec, use_egl=renderer == "egl")
-        position, rotation = sim.physics.frame_pose(OPTICAL_FRAME)
+        position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
         with_robot, depth_with = view.render(position, rotation, depth=True)
-        pybullet.removeBody(sim.physics.robot, physicsClientId=sim.physics.client)
+        pybullet.removeBody(sim.robot.body.robot, physicsClientId=sim.physics.client)
         without_robot, depth_without = view.render(position, rotation, depth=True)
         assert np.array_equal(with_robot, without_robot)
         assert np.array_equal(depth_with, depth_without)
@@ -291,8 +301,8 @@ def test_autorace_camera_looks_down_10_degrees(monkeypatch):
     height / sin(0.174) ahead."""
     sim = _simulation(monkeypatch, "burger", "tiny")
     try:
-        spec = sim.spec.optional_camera
-        position, rotation = sim.physics.frame_pose(OPTICAL_FRAME)
+        spec = sim.camera_spec
+        position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
         assert rotation[:, 2] == pytest.approx((math.cos(0.174), 0.0, -math.sin(0.174)),
                                                abs=1e-3)
         rgb, depth = CameraRenderer(sim.physics.client, spec, use_egl=False).render(
@@ -313,10 +323,10 @@ def test_large_images_are_drawn_in_tiles_with_egl(monkeypatch):
     4 tiles, and every column of it is its own (no stretched 1024-pixel image)."""
     sim = _simulation(monkeypatch, "waffle", "egl")
     try:
-        spec = sim.spec.camera
+        spec = sim.camera_spec
         view = CameraRenderer(sim.physics.client, spec, use_egl=True)
         assert view.tile_count == 4
-        position, rotation = sim.physics.frame_pose(OPTICAL_FRAME)
+        position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
         _, depth = view.render(position, rotation, depth=True)
         floor = depth[600:, 960]                          # nearer with every row down
         assert np.all(np.diff(floor) < 0)                 # (a stretched image repeats rows)

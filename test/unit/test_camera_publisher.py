@@ -5,7 +5,7 @@ import rospy
 
 from tutorial_turtlebot.sim.camera import CameraIntrinsics
 from tutorial_turtlebot.gazebo.camera_publisher import CameraPublisher
-from tutorial_turtlebot.sim.robot_models import MODELS
+from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
 
 
 class FakePublisher:
@@ -28,7 +28,8 @@ class FakeSim:
     """Counts renders; returns a flat image and a 2 m depth."""
 
     def __init__(self, model):
-        self.camera_spec = MODELS[model].camera
+        self.camera_sensor = read_urdf(urdf_path(model)).plugins.camera
+        self.camera_spec = self.camera_sensor.spec
         self.camera = FakeCamera(self.camera_spec)
         self.renders = []
 

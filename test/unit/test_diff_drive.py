@@ -6,7 +6,8 @@ import pytest
 from tutorial_turtlebot.sim.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR, SNAP_TOLERANCE,
                                            DiffDriveController, body_twist, sanitize_command,
                                            wheel_rim_speeds)
-from tutorial_turtlebot.sim.robot_models import MODELS
+from tutorial_turtlebot.sim.robot_models import MODEL_NAMES
+from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
 
 SEPARATIONS = (0.160, 0.287)   # burger, waffle / waffle_pi
 RADIUS = 0.033
@@ -24,10 +25,12 @@ def rims(controller, dt=TICK):
 # --- kinematics ---------------------------------------------------------------------------------
 
 def test_model_separations_are_the_plugin_values():
-    """The controller geometry comes from robot_models: 0.160 burger, 0.287 the waffles."""
-    assert MODELS["burger"].wheel_separation == 0.160
-    assert MODELS["waffle"].wheel_separation == MODELS["waffle_pi"].wheel_separation == 0.287
-    assert all(m.wheel_radius == RADIUS for m in MODELS.values())
+    """The controller geometry comes from the URDFs' diff-drive plugins: 0.160 burger, 0.287
+    the waffles, wheel radius 0.033 for all."""
+    drives = {m: read_urdf(urdf_path(m)).plugins.drive for m in MODEL_NAMES}
+    assert drives["burger"].wheel_separation == 0.160
+    assert drives["waffle"].wheel_separation == drives["waffle_pi"].wheel_separation == 0.287
+    assert all(d.wheel_radius == pytest.approx(RADIUS) for d in drives.values())
 
 
 @pytest.mark.parametrize("separation", SEPARATIONS)

@@ -69,3 +69,83 @@ def test_relative_world_files_resolve_where_the_command_was_typed():
 
 def test_no_master_means_no_running_simulator():
     assert running_simulator(master_uri="http://localhost:9") is None
+
+
+# The lab nodes per robot namespace (several robots: /tb3_1/cmd_vel, /tb3_2/scan, ...).
+
+def launch_nodes(launch, *args):
+    """The node names roslaunch would start for ``launch/<launch> args`` (--nodes, no master)."""
+    if shutil.which("roslaunch") is None:
+        pytest.skip("'roslaunch' not found: install ROS 1 (tools/setup.sh) or source its setup")
+    env = dict(os.environ, ROS_MASTER_URI="http://localhost:9")
+    env["ROS_PACKAGE_PATH"] = os.pathsep.join(p for p in (ROOT, env.get("ROS_PACKAGE_PATH")) if p)
+    env["PATH"] = os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", "")
+    run = subprocess.run(["roslaunch", "--nodes", os.path.join(ROOT, "launch", launch)]
+                         + list(args), capture_output=True, text=True, timeout=60, env=env)
+    assert run.returncode == 0, run.stdout + run.stderr
+    return run.stdout.split()
+
+
+@pytest.mark.parametrize("launch, node", [("wander.launch", "wander"),
+                                          ("stop_at_obstacle.launch", "stop_at_obstacle"),
+                                          ("teleop_key.launch", "turtlebot3_teleop_keyboard")])
+def test_lab_launch_ns_puts_the_node_in_that_namespace(launch, node):
+    """ns:=tb3_2 starts /tb3_2/<node> (its relative topics: /tb3_2/scan, /tb3_2/cmd_vel);
+    without ns it is /<node>, as before."""
+    assert launch_nodes(launch, "ns:=tb3_2") == ["/tb3_2/" + node]
+    assert launch_nodes(launch) == ["/" + node]
+
+
+def test_wander_launch_ns_moves_every_param_with_the_node():
+    plain = dump_params("wander.launch")
+    spaced = dump_params("wander.launch", "ns:=tb3_2", "model:=waffle", "speed:=0.1")
+    assert spaced == dict({key.replace("/wander/", "/tb3_2/wander/"): value
+                           for key, value in plain.items()},
+                          **{"/tb3_2/wander/model": "waffle", "/tb3_2/wander/speed": 0.1})
+    assert sorted(plain) == ["/wander/" + name for name in (
+        "clear_margin", "scan_timeout", "sector_deg", "speed", "stop_distance", "turn_speed")]
+
+
+def test_stop_at_obstacle_and_teleop_launch_ns_move_their_params():
+    plain = dump_params("stop_at_obstacle.launch")
+    spaced = dump_params("stop_at_obstacle.launch", "ns:=tb3_1", "stop_distance:=0.4")
+    assert spaced == dict({key.replace("/stop_at_obstacle/", "/tb3_1/stop_at_obstacle/"): value
+                           for key, value in plain.items()},
+                          **{"/tb3_1/stop_at_obstacle/stop_distance": 0.4})
+    teleop = dump_params("teleop_key.launch", "ns:=tb3_1", "model:=waffle")
+    assert teleop == {"/tb3_1/turtlebot3_teleop_keyboard/model": "waffle"}
+    assert dump_params("teleop_key.launch", "ns:=tb3_1") == {}
+
+
+@pytest.mark.parametrize("node", ["wander", "stop_at_obstacle", "laser_data", "teleop_key"])
+@pytest.mark.parametrize("namespace", ["tb 3", "tb3-1", "tb3_1/x.y"])
+def test_lab_node_in_an_illegal_namespace_says_so_in_one_line(node, namespace):
+    """ROS_NAMESPACE (or a launch file's ns) with characters the master refuses: one line naming
+    it and exit status 2, before any master is contacted (there is none here); without the
+    check the node ran on, every topic refused by the master. teleop_key first needs a
+    terminal; without one it says that instead, also in one line."""
+    env = dict(os.environ, ROS_MASTER_URI="http://localhost:9", ROS_NAMESPACE=namespace)
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (os.path.join(ROOT, "src"),
+                                                    env.get("PYTHONPATH")) if p)
+    module = "tutorial_turtlebot.lab.%s_node" % node
+    run = subprocess.run([sys.executable, "-c", "import %s as m; m.main()" % module],
+                         stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=60,
+                         env=env)
+    assert run.returncode == 2, run.stdout + run.stderr
+    assert len(run.stderr.splitlines()) == 1, run.stderr
+    if node == "teleop_key":
+        assert "no terminal" in run.stderr
+    else:
+        assert run.stderr.startswith("%s: namespace '/%s/' is not a legal ROS name"
+                                     % (node, namespace)), run.stderr
+
+
+def test_teleop_banner_names_its_topic_when_it_is_not_cmd_vel():
+    """Three terminals, three robots: the banner's first line says which one each drives."""
+    from tutorial_turtlebot.lab.teleop_keys import Teleop
+    plain = Teleop(0.22, 2.84, "burger").banner()
+    assert "driving" not in plain
+    spaced = Teleop(0.26, 1.82, "waffle", topic="/tb3_1/cmd_vel").banner()
+    first = spaced.strip().splitlines()[0]
+    assert first == "Control Your TurtleBot3! (driving /tb3_1/cmd_vel)"
+    assert spaced.replace(" (driving /tb3_1/cmd_vel)", "") == Teleop(0.26, 1.82, "waffle").banner()

@@ -71,7 +71,7 @@ def run(sim, seconds):
     """Step ``seconds`` of sim time; return how often each output was due."""
     counts = {}
     for _ in range(round(seconds / sim.config.time_step)):
-        for name in sim.step():
+        for _, name in sim.step():
             counts[name] = counts.get(name, 0) + 1
     return counts
 
@@ -129,8 +129,7 @@ def test_bad_step_size(step):
         SimConfig(time_step=step).validate()
 
 
-@pytest.mark.parametrize("name", ["odom_rate", "joint_states_rate", "scan_rate", "imu_rate",
-                                  "clock_rate"])
+@pytest.mark.parametrize("name", ["clock_rate"])
 @pytest.mark.parametrize("rate", [0.0, -1.0, math.nan, math.inf, 401.0, "fast"])
 def test_bad_rates(name, rate):
     """A rate <= 0, non-finite, not a number or above the 400 Hz physics rate: UserError."""
@@ -140,7 +139,7 @@ def test_bad_rates(name, rate):
 
 def test_rate_up_to_the_physics_rate_is_fine():
     """Every step (400 Hz at 2.5 ms) is the fastest allowed rate."""
-    SimConfig(imu_rate=400.0, clock_rate=400.0).validate()
+    SimConfig(clock_rate=400.0).validate()
 
 
 @pytest.mark.parametrize("name", ["x", "y", "z", "yaw"])
@@ -187,13 +186,13 @@ def test_rests_on_its_wheels_at_the_spawn(resting):
     roll, pitch, _ = rpy(resting)
     assert abs(roll) < 0.03 and abs(pitch) < 0.03
     assert heading(resting) == pytest.approx(0.7, abs=0.01)
-    lin, ang = resting.physics.velocity()
+    lin, ang = resting.robot.body.velocity()
     assert np.linalg.norm(lin) < 0.01 and np.linalg.norm(ang) < 0.05
 
 
 def test_total_mass_matches_the_urdf(resting):
     """The masses pybullet simulates add up to the URDF's: ~1.00 kg burger, ~1.55 kg waffles."""
-    phys = resting.physics
+    phys = resting.robot.body
     links = range(-1, pybullet.getNumJoints(phys.robot, physicsClientId=phys.client))
     total = sum(pybullet.getDynamicsInfo(phys.robot, link, physicsClientId=phys.client)[0]
                 for link in links)
@@ -489,7 +488,7 @@ def test_imu_while_turning(make_sim):
     run(sim, 1.0)
     readings = []
     for _ in range(400):
-        if "imu" in sim.step():
+        if (sim.robot, "imu") in sim.step():
             readings.append(sim.imu().angular_velocity[2])
     assert len(readings) == 200
     assert np.mean(readings) == pytest.approx(0.5, abs=0.05)
@@ -525,7 +524,7 @@ def test_reset_simulation(make_sim):
     sim.reset_simulation()
     assert sim.time_ns == 0 and sim.time == 0.0
     assert sim.ground_truth()[0][:2] == pytest.approx(TB3_SPAWN, abs=1e-6)
-    assert sim.step() == ["clock", "odom", "joint_states", "scan", "imu"]
+    assert [name for _, name in sim.step()] == ["clock", "odom", "joint_states", "scan", "imu"]
     assert sim.time_ns == sim.step_ns
 
 
@@ -534,7 +533,7 @@ def test_reset_simulation(make_sim):
 def test_step_reports_outputs_at_their_rates(make_sim):
     """Over 1 s: scan 5, odom and joint_states 30, imu 200, clock 100; 2.5 ms per step."""
     sim = make_sim(model="burger", world="empty")
-    assert sim.step() == ["clock", "odom", "joint_states", "scan", "imu"]
+    assert [name for _, name in sim.step()] == ["clock", "odom", "joint_states", "scan", "imu"]
     assert sim.time_ns == 2_500_000
     counts = run(sim, 1.0)
     assert counts == {"scan": 5, "odom": 30, "joint_states": 30, "imu": 200, "clock": 100}
@@ -543,10 +542,15 @@ def test_step_reports_outputs_at_their_rates(make_sim):
                              "clock": 900}
 
 
-def test_custom_rates(make_sim):
-    """Rates from the config: odom 50 Hz, scan 10 Hz with a 5 ms step."""
-    sim = make_sim(model="burger", world="empty", time_step=0.005, odom_rate=50.0,
-                   scan_rate=10.0)
+def test_custom_rates(make_sim, tmp_path):
+    """Rates from an edited URDF: the diff drive's updateRate 50 Hz (odom), the laser's
+    update_rate 10 Hz, with a 5 ms step."""
+    text = open(urdf_path("burger")).read()
+    assert "<updateRate>30</updateRate>" in text and "<update_rate>5</update_rate>" in text
+    edited = tmp_path / "burger.urdf"
+    edited.write_text(text.replace("<updateRate>30</updateRate>", "<updateRate>50</updateRate>")
+                      .replace("<update_rate>5</update_rate>", "<update_rate>10</update_rate>"))
+    sim = make_sim(model="burger", world="empty", time_step=0.005, urdf=str(edited))
     sim.step()
     counts = run(sim, 1.0)
     assert counts["odom"] == 50 and counts["scan"] == 10 and counts["imu"] == 200

@@ -67,6 +67,14 @@ def test_the_goal_box_file():
     assert model.pose[5] == pytest.approx(-1.5708)
 
 
+def test_urdf_with_plugins_is_a_robot():
+    """A URDF whose <gazebo> blocks hold plugins is a robot: its text goes on as given, for
+    Simulation.add_robot (the plugins are checked there)."""
+    xml = URDF.replace("</robot>", "<gazebo><plugin name='p' filename='libx.so'/></gazebo></robot>")
+    request = parse_spawn("r", xml, kind="urdf")
+    assert request.robot == xml and request.urdf is None and request.world is None
+
+
 def test_urdf_without_plugins():
     request = parse_spawn("thing", URDF, kind="urdf")
     assert request.world is None and 'name="thing"' in request.urdf
@@ -83,8 +91,6 @@ def test_urdf_without_plugins():
     ("<!DOCTYPE x [<!ENTITY a 'aaaa'>]><sdf/>", "DOCTYPE"),
     ("<sdf>" + "<model name='m'>" * 100 + "</model>" * 100 + "</sdf>", "nested more than"),
     ("<sdf>" + " " * (MAX_XML_BYTES + 1) + "</sdf>", "more than the 1000000 allowed"),
-    (URDF.replace("</robot>", "<gazebo><plugin name='p' filename='libx.so'/></gazebo></robot>"),
-     "plugins"),
     (URDF.replace("<sphere radius=\"0.05\"/>", "<mesh filename='package://x/y.stl'/>"),
      "<mesh> geometry is not supported"),
     (URDF.replace('<parent link="base"/>', '<parent link="nowhere"/>'), "must name links"),

@@ -76,8 +76,9 @@ def test_spawn_order_and_duplicate_and_delete(empty):
     assert sim.models.names() == ["ground_plane", "turtlebot3_burger", "b"]
     with pytest.raises(RequestError, match="DeleteModel: model does not exist"):
         wc.delete("a")
-    with pytest.raises(RequestError, match="cannot be deleted"):
-        wc.delete("turtlebot3_burger")
+    wc.delete("turtlebot3_burger")           # a robot goes with its plugins' outputs
+    assert sim.models.names() == ["ground_plane", "b"] and sim.robot is None
+    assert sim.robots == {} and all(robot is None for robot, _ in sim.step())
 
 
 def test_the_robot_pushes_a_light_box(empty):

@@ -1,12 +1,14 @@
-"""ROS glue of the simulated camera: the topics Gazebo's camera plugins and the real robot use.
+"""ROS glue of a simulated camera: the topics Gazebo's camera plugins and the real robot use.
 
-Publications (relative names, frame ``camera_rgb_optical_frame`` for all, one render a tick):
+Publications, named by the URDF's camera plugin (cameraName, imageTopicName, ...) in the
+robot's namespace; for a TurtleBot3 (frame ``camera_rgb_optical_frame``, one render a tick):
   camera/rgb/image_raw, camera/image                    sensor_msgs/Image, rgb8
   camera/rgb/camera_info, camera/camera_info            sensor_msgs/CameraInfo, plumb_bob
   camera/rgb/image_raw/compressed, camera/image/compressed   sensor_msgs/CompressedImage, jpeg
-  waffle (RealSense R200) also:
+  a depth camera (the waffle's RealSense R200, libgazebo_ros_openni_kinect) also:
   camera/depth/image_raw (32FC1, metres, NaN outside 0.4..5 m), camera/depth/camera_info,
   camera/depth/points (sensor_msgs/PointCloud2, organized, x y z rgb)
+``camera/image`` and ``camera/camera_info`` are the real robot's names (its cv_camera).
 Nothing is rendered or encoded for topics nobody subscribes to.
 """
 import rospy
@@ -14,50 +16,62 @@ from sensor_msgs.msg import CameraInfo, CompressedImage, Image, PointCloud2, Poi
 
 from ..sim.camera import (CameraIntrinsics, depth_image, jpeg_available, jpeg_bytes,
                      pointcloud_bytes, pointcloud_xyz)
-from ..sim.simulation import CAMERA_FRAME, Simulation
+from rosgraph.names import ns_join
 
 COMPRESSED_FORMAT = "rgb8; jpeg compressed bgr8"  # as image_transport's compressed plugin
 
 
-def camera_info(intrinsics: CameraIntrinsics, width: int, height: int) -> CameraInfo:
+def camera_info(intrinsics: CameraIntrinsics, width: int, height: int,
+                frame: str) -> CameraInfo:
     """The CameraInfo gazebo_ros_camera_utils fills for these intrinsics."""
     info = CameraInfo(width=width, height=height, distortion_model=intrinsics.distortion_model,
                       D=intrinsics.D(), K=intrinsics.K(), R=intrinsics.R(), P=intrinsics.P())
-    info.header.frame_id = CAMERA_FRAME
+    info.header.frame_id = frame
     return info
 
 
 class CameraPublisher:
-    """Renders the sim's camera when one of its topics has a subscriber, and publishes."""
+    """Renders a robot's camera when one of its topics has a subscriber, and publishes."""
 
-    def __init__(self, sim: Simulation, make_publisher=rospy.Publisher):
-        """``make_publisher(topic, type, queue_size=...)``: rospy.Publisher, or a stand-in."""
-        self.sim = sim
-        spec = sim.camera_spec
+    def __init__(self, robot, make_publisher=rospy.Publisher, namespace: str = "",
+                 frame_prefix: str = ""):
+        """``robot``: a SimRobot with a camera (``camera_sensor``, ``camera_image``);
+        ``make_publisher(topic, type, queue_size=...)``: rospy.Publisher, or a stand-in;
+        topics in ``namespace`` ("" = the node's), frames prefixed with ``frame_prefix``."""
+        self.robot = robot
+        spec, sensor = robot.camera_spec, robot.camera_sensor
+        base = ns_join(namespace, sensor.camera_name) if namespace else sensor.camera_name
+
+        advertised = set()
 
         def pubs(msg_type, *topics):
-            return [make_publisher(t, msg_type, queue_size=1) for t in topics]
-        self.image_pubs = pubs(Image, "camera/rgb/image_raw", "camera/image")
-        self.info_pubs = pubs(CameraInfo, "camera/rgb/camera_info", "camera/camera_info")
-        self.jpeg_pubs = (pubs(CompressedImage, "camera/rgb/image_raw/compressed",
-                               "camera/image/compressed") if jpeg_available() else [])
+            """One publisher per topic (the plugin's names may equal the real robot's)."""
+            names = [ns_join(base, t) for t in topics]
+            names = [n for i, n in enumerate(names) if n not in advertised and n not in names[:i]]
+            advertised.update(names)
+            return [make_publisher(n, msg_type, queue_size=1) for n in names]
+        self.image_pubs = pubs(Image, sensor.image_topic, "image")
+        self.info_pubs = pubs(CameraInfo, sensor.info_topic, "camera_info")
+        self.jpeg_pubs = (pubs(CompressedImage, sensor.image_topic + "/compressed",
+                               "image/compressed") if jpeg_available() else [])
         self.depth_pubs, self.points_pubs = [], []
         if spec.depth:
-            self.depth_pubs = pubs(Image, "camera/depth/image_raw")
-            self.info_pubs += pubs(CameraInfo, "camera/depth/camera_info")
-            self.points_pubs = pubs(PointCloud2, "camera/depth/points")
-        self.info = camera_info(sim.camera.intrinsics, spec.width, spec.height)
+            self.depth_pubs = pubs(Image, sensor.depth_image_topic)
+            self.info_pubs += pubs(CameraInfo, sensor.depth_info_topic)
+            self.points_pubs = pubs(PointCloud2, sensor.point_cloud_topic)
+        frame = frame_prefix + sensor.frame.lstrip("/")
+        self.info = camera_info(robot.camera.intrinsics, spec.width, spec.height, frame)
         self.image = Image(height=spec.height, width=spec.width, encoding="rgb8",
                            is_bigendian=0, step=3 * spec.width)
-        self.image.header.frame_id = CAMERA_FRAME
+        self.image.header.frame_id = frame
         self.depth = Image(height=spec.height, width=spec.width, encoding="32FC1",
                            is_bigendian=0, step=4 * spec.width)
-        self.depth.header.frame_id = CAMERA_FRAME
+        self.depth.header.frame_id = frame
         self.jpeg = CompressedImage(format=COMPRESSED_FORMAT)
-        self.jpeg.header.frame_id = CAMERA_FRAME
+        self.jpeg.header.frame_id = frame
         self.points = PointCloud2(height=spec.height, width=spec.width, is_bigendian=False,
                                   is_dense=False)
-        self.points.header.frame_id = CAMERA_FRAME
+        self.points.header.frame_id = frame
 
     @staticmethod
     def _wanted(pubs):
@@ -72,7 +86,7 @@ class CameraPublisher:
             pub.publish(self.info)
         if not (images or jpegs or depths or points):
             return
-        rgb, depth = self.sim.camera_image(depth=bool(depths or points))
+        rgb, depth = self.robot.camera_image(depth=bool(depths or points))
         if images:
             self.image.header.stamp = stamp
             self.image.data = rgb.tobytes()
@@ -92,7 +106,7 @@ class CameraPublisher:
             self._publish_points(stamp, rgb, depth, points)
 
     def _publish_points(self, stamp, rgb, depth, pubs) -> None:
-        xyz, colours = pointcloud_xyz(depth, self.sim.camera.intrinsics, organized=True,
+        xyz, colours = pointcloud_xyz(depth, self.robot.camera.intrinsics, organized=True,
                                       rgb=rgb)
         data, point_step, fields = pointcloud_bytes(xyz, colours)
         msg = self.points

@@ -1,5 +1,6 @@
 """``robot_description MODEL [CAMERA] [--new-sim]``: print the URDF that sim.launch loads as
-/robot_description (CAMERA true on a burger gives the AutoRace burger). With ``--new-sim`` it
+/robot_description (CAMERA true on a burger gives the AutoRace burger; empty or false: the
+model's own URDF). With ``--new-sim`` it
 first makes sure no simulator runs on the ROS master yet: sim.launch runs it while roslaunch is
 still reading the launch file, so a second sim.launch stops before it changes anything of the
 first. Bad arguments, or a running simulator: one line on stderr, exit status 2."""
@@ -10,13 +11,13 @@ from ..sim.urdf_file import read_urdf, urdf_path
 from .single_instance import refuse_if_running
 
 USAGE = ("usage: robot_description MODEL [CAMERA] [--new-sim]  (MODEL: burger, waffle, "
-         "waffle_pi; CAMERA: true/false; --new-sim: fail if a simulator already runs)")
+         "waffle_pi; CAMERA: true/false/empty; --new-sim: fail if a simulator already runs)")
 
 
 def description_text(model: str, camera: str = "false") -> str:
     """The checked URDF text of ``model``; UserError for a bad model, camera flag or file."""
-    if camera.lower() not in ("true", "false"):
-        raise UserError("camera must be true or false, got %r" % camera)
+    if camera.lower() not in ("true", "false", ""):
+        raise UserError("camera must be true, false or empty, got %r" % camera)
     path = urdf_path(model, camera.lower() == "true")
     read_urdf(path)  # a broken file is named here, not deep inside robot_state_publisher
     with open(path, encoding="utf-8") as f:

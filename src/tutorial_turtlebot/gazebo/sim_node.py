@@ -6,31 +6,30 @@ It owns the clock: physics runs at ``~max_step_size`` of sim time per step, pace
 
 Publications (relative names resolve in the node's namespace, as Gazebo's plugins do):
   /clock (rosgraph_msgs/Clock)          ~clock_rate Hz (100)
-  odom (nav_msgs/Odometry)              30 Hz, odom -> base_footprint
-  /tf (tf2_msgs/TFMessage)              30 Hz, odom -> base_footprint
-  joint_states (sensor_msgs/JointState) 30 Hz, wheel_left_joint, wheel_right_joint (rad, rad/s)
-  scan (sensor_msgs/LaserScan)          5 Hz, base_scan
-  imu (sensor_msgs/Imu)                 200 Hz, imu_link, linear acceleration includes gravity
-  camera/... (waffle, waffle_pi, burger with ~camera)  30 Hz: see camera_publisher
+  /tf (tf2_msgs/TFMessage)              every robot's odom -> base_footprint, 30 Hz
+  each robot's topics, made from its URDF's <gazebo> plugins: see robot_topics
+  (sim.launch's robot in the node's namespace: odom, joint_states, scan, imu, camera/...,
+  subscribing cmd_vel; one spawned with robot_namespace tb3_0: /tb3_0/odom, ...)
   A message type nobody subscribes to is not even computed.
-Subscriptions:
-  cmd_vel (geometry_msgs/Twist)         linear.x (m/s), angular.z (rad/s); kept until the next
 Services (std_srvs/Empty):
   ~reset_simulation (time back to 0, robot to spawn), ~reset_world (robot to spawn),
   ~pause_physics, ~unpause_physics
 Parameters (private):
   ~model (burger)             burger, waffle or waffle_pi
+  ~spawn_robot (true)         false: no robot of its own; robots come by spawn_urdf_model
   ~world (turtlebot3_world)   a name from worlds/ or a path to an SDF file
   ~x_pos, ~y_pos, ~yaw        spawn of base_footprint (m, m, rad); empty = the world's spawn
   ~z_pos (0.0)                m
   ~camera (model's)           simulate the camera: waffle, waffle_pi by default; true on a
                               burger gives the AutoRace burger's pitched 320x240 camera
-  ~lidar_model (gazebo)       gazebo (+inf no return) or lds01 (the real driver: 0.0)
-  ~lidar_samples (360)        rays per scan over the same sweep (the stages' DQN agent: 24)
+  ~lidar_model (gazebo)       gazebo (as the URDF declares) or lds01 (the real driver: 0.0)
+  ~lidar_samples (empty)      rays per scan over the same sweep; empty = the URDF's (360)
   ~robot_name (empty)         the robot's model name; empty = turtlebot3_gazebo's for the world
   ~model_states_rate (100.0)  Hz of sim time of ~model_states, ~link_states (see world_api)
-  ~odom_source (world)        world (ground truth from the spawn pose) or encoders (from 0)
+  ~odom_source (empty)        world (ground truth from the spawn pose) or encoders (from 0);
+                              empty = the URDF's odometrySource (world)
   ~clamp_cmd_vel (true)       hold cmd_vel to the model's limits, as the real firmware does
+  (lidar_model, lidar_samples, odom_source, clamp_cmd_vel apply to spawned robots too)
   ~gui (false)                open pybullet's 3D window (only where a display exists)
   ~real_time_factor (1.0)     sim seconds per wall second; 0 = as fast as possible
   ~paused (false)             start with physics paused
@@ -51,27 +50,20 @@ import rosgraph.names
 import rospy
 import rospy.impl.simtime
 import tf2_ros
-from geometry_msgs.msg import TransformStamped, Twist
-from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import Imu, JointState, LaserScan
 from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
-from .camera_publisher import CameraPublisher
 from .world_api import WorldApi
 from ..errors import UserError
 from ..sim.kinematics import yaw_from_quat
 from .nonblocking_publisher import Backlog, make_nonblocking
 from ..sim.pacing import Pacer
+from .robot_topics import RobotTopics
 from .single_instance import refuse_if_running
-from ..sim.physics import WHEEL_JOINTS
 from ..sim.simulation import SimConfig, Simulation
 from ..sim.world_sdf import world_from_command_line
 
-# Gazebo diff-drive plugin's pose covariance diagonal (x, y, z, roll, pitch, yaw).
-POSE_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
-ODOM_FRAME, BASE_FRAME = "odom", "base_footprint"
 SHUTDOWN_CHECK_STEPS = 200
 
 
@@ -108,9 +100,10 @@ def read_config() -> SimConfig:
         yaw=_param("yaw", None, float, allow_empty=True),
         camera=_param("camera", None, bool, allow_empty=True),
         lidar_model=_param("lidar_model", "gazebo", str),
-        lidar_samples=_param("lidar_samples", 360, int),
+        lidar_samples=_param("lidar_samples", None, int, allow_empty=True),
         robot_name=_param("robot_name", None, str, allow_empty=True),
-        odom_source=_param("odom_source", "world", str),
+        odom_source=_param("odom_source", None, str, allow_empty=True),
+        spawn_robot=_param("spawn_robot", True, bool),
         clamp_cmd_vel=_param("clamp_cmd_vel", True, bool),
         gui=_param("gui", False, bool),
         time_step=_param("max_step_size", 0.0025, float),
@@ -130,27 +123,18 @@ class SimNode:
         self.status_period = status_period
         self._requests = queue.Queue()
         self._wake = threading.Event()
-        self._command = None
         self.stop_requested = False  # set by the SIGINT/SIGTERM handler of main()
-        self._build_messages()
+        self.clock_msg = Clock()
         # Every message is written from this loop without a thread switch, and a subscriber
         # that stops reading loses old messages instead of stalling the simulation.
         self.backlog = Backlog()
-        self.pubs = {
-            "clock": self._publisher("/clock", Clock),
-            "odom": self._publisher("odom", Odometry),
-            "joint_states": self._publisher("joint_states", JointState),
-            "scan": self._publisher("scan", LaserScan),
-            "imu": self._publisher("imu", Imu),
-        }
+        self.clock_pub = self._publisher("/clock", Clock)
         self.tf = tf2_ros.TransformBroadcaster()
         make_nonblocking(self.tf.pub_tf, self.backlog)
-        self.publishers = {"clock": self._publish_clock, "odom": self._publish_odom,
-                           "joint_states": self._publish_joints, "scan": self._publish_scan,
-                           "imu": self._publish_imu}
-        if sim.camera is not None:
-            self.publishers["camera"] = CameraPublisher(sim, self._publisher).publish
-        rospy.Subscriber("cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
+        self.publishers = {"clock": self._publish_clock}   # the world's outputs
+        self.robot_topics = {}                               # robot name -> RobotTopics
+        self._topics = []
+        self.sync_robots()
         for name, action in (("reset_simulation", sim.reset_simulation),
                              ("reset_world", sim.reset_world),
                              ("pause_physics", self._pause), ("unpause_physics", self._unpause)):
@@ -164,81 +148,19 @@ class SimNode:
         make_nonblocking(publisher, self.backlog)
         return publisher
 
+    def sync_robots(self) -> None:
+        """Give every robot of the simulation its topics, and take them from robots that are
+        gone (after spawn_urdf_model and delete_model; run in the loop)."""
+        for name in [n for n in self.robot_topics if n not in self.sim.robots]:
+            self.robot_topics.pop(name).close()
+        for name, robot in self.sim.robots.items():
+            if name not in self.robot_topics:
+                for warning in robot.warnings:
+                    rospy.logwarn("%s: %s", name, warning)
+                self.robot_topics[name] = RobotTopics(robot, self._publisher, self.tf)
+        self._topics = list(self.robot_topics.values())
+
     # --- messages --------------------------------------------------------------------------------
-
-    def _build_messages(self) -> None:
-        """Messages are filled in place each time: only the changing fields are written."""
-        laser = self.sim.laser
-        self.clock_msg = Clock()
-        self.odom_msg = Odometry()
-        self.odom_msg.header.frame_id = ODOM_FRAME
-        self.odom_msg.child_frame_id = BASE_FRAME
-        for i, value in enumerate(POSE_COVARIANCE_DIAGONAL):
-            self.odom_msg.pose.covariance[i * 7] = value
-        self.tf_msg = TransformStamped()
-        self.tf_msg.header.frame_id = ODOM_FRAME
-        self.tf_msg.child_frame_id = BASE_FRAME
-        self.joint_msg = JointState(name=list(WHEEL_JOINTS))
-        self.scan_msg = LaserScan(angle_min=laser.angle_min, angle_max=laser.angle_max,
-                                  angle_increment=laser.angle_increment, time_increment=0.0,
-                                  scan_time=0.0, range_min=laser.range_min,
-                                  range_max=laser.range_max, intensities=[0.0] * laser.samples)
-        self.scan_msg.header.frame_id = "base_scan"
-        self.imu_msg = Imu()
-        self.imu_msg.header.frame_id = "imu_link"
-
-    def _publish_odom(self, stamp) -> None:
-        wants_odom = self.pubs["odom"].get_num_connections() > 0
-        wants_tf = self.tf.pub_tf.get_num_connections() > 0
-        if not (wants_odom or wants_tf):
-            return
-        state = self.sim.odom()
-        if wants_odom:
-            msg = self.odom_msg
-            msg.header.stamp = stamp
-            p, q = msg.pose.pose.position, msg.pose.pose.orientation
-            p.x, p.y, p.z = state.position
-            q.x, q.y, q.z, q.w = state.orientation
-            lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
-            lin.x, lin.y, lin.z = state.linear
-            ang.x, ang.y, ang.z = state.angular
-            self.pubs["odom"].publish(msg)
-        if wants_tf:
-            t = self.tf_msg
-            t.header.stamp = stamp
-            tr, rot = t.transform.translation, t.transform.rotation
-            tr.x, tr.y, tr.z = state.position
-            rot.x, rot.y, rot.z, rot.w = state.orientation
-            self.tf.sendTransform(t)
-
-    def _publish_joints(self, stamp) -> None:
-        if self.pubs["joint_states"].get_num_connections() == 0:
-            return
-        positions, velocities = self.sim.joint_states()
-        msg = self.joint_msg
-        msg.header.stamp = stamp
-        msg.position, msg.velocity = list(positions), list(velocities)
-        self.pubs["joint_states"].publish(msg)
-
-    def _publish_scan(self, stamp) -> None:
-        if self.pubs["scan"].get_num_connections() == 0:
-            return
-        msg = self.scan_msg
-        msg.header.stamp = stamp
-        msg.ranges = self.sim.scan().tolist()
-        self.pubs["scan"].publish(msg)
-
-    def _publish_imu(self, stamp) -> None:
-        if self.pubs["imu"].get_num_connections() == 0:
-            return
-        state = self.sim.imu()
-        msg = self.imu_msg
-        msg.header.stamp = stamp
-        q, w, a = msg.orientation, msg.angular_velocity, msg.linear_acceleration
-        q.x, q.y, q.z, q.w = state.orientation
-        w.x, w.y, w.z = state.angular_velocity
-        a.x, a.y, a.z = state.linear_acceleration
-        self.pubs["imu"].publish(msg)
 
     def _publish_due(self, due) -> None:
         """Publish what is due at this step, all with this step's stamp. /clock runs on its own
@@ -247,24 +169,19 @@ class SimNode:
         if not due:
             return
         stamp = rospy.Time(*divmod(self.sim.time_ns, 1_000_000_000))
-        for name in due:
-            self.publishers[name](stamp)
+        for robot, name in due:
+            if robot is None:
+                self.publishers[name](stamp)
+            else:
+                self.robot_topics[robot.name].publishers[name](stamp)
 
     def _publish_clock(self, stamp) -> None:
         self.clock_msg.clock = stamp
-        self.pubs["clock"].publish(self.clock_msg)
+        self.clock_pub.publish(self.clock_msg)
         # The sim's own rospy time follows its clock directly (see main: no /clock round trip).
         _set_rostime(stamp)
 
     # --- input -----------------------------------------------------------------------------------
-
-    def _on_cmd_vel(self, msg: Twist) -> None:
-        linear, angular = msg.linear.x, msg.angular.z
-        if not (math.isfinite(linear) and math.isfinite(angular)):
-            rospy.logwarn_throttle(5.0, "cmd_vel ignored: NaN or infinite field (linear.x=%r, "
-                                   "angular.z=%r)" % (linear, angular))
-            return
-        self._command = (linear, angular)
 
     def _service_handler(self, name, action):
         def handle(_request):
@@ -293,7 +210,7 @@ class SimNode:
             if self.sim.time_ns != before:  # reset_simulation: everyone sees the new time now
                 self.backlog.send_due()      # after what was made before it
                 self.pacer.restart(self.sim.time)
-                self._publish_due(["clock"])
+                self._publish_due([(None, "clock")])
 
     # --- loop ------------------------------------------------------------------------------------
 
@@ -301,7 +218,7 @@ class SimNode:
         """Step, publish and pace until ROS shuts down."""
         sim, pacer, backlog = self.sim, self.pacer, self.backlog
         pacer.restart(sim.time)
-        self._publish_due(["clock"])
+        self._publish_due([(None, "clock")])
         next_status = time.monotonic() + self.status_period
         steps = 0
         while True:
@@ -327,9 +244,9 @@ class SimNode:
                 self._wake.clear()
                 pacer.restart(sim.time)
                 continue
-            command, self._command = self._command, None
-            if command is not None:
-                self._apply_command(*command)
+            for topics in self._topics:
+                if topics.command is not None:
+                    topics.apply_command()
             due = sim.step()
             if not paced:
                 self._publish_due(due)
@@ -354,18 +271,17 @@ class SimNode:
             backlog.send_due(next_due)
         pacer.sleep_until(wall_time)
 
-    def _apply_command(self, linear: float, angular: float) -> None:
-        problems = self.sim.command(linear, angular)
-        if problems:
-            rospy.logwarn_throttle(5.0, "cmd_vel beyond the %s's limits: %s"
-                                   % (self.sim.spec.name, "; ".join(problems)))
-
     def _log_status(self) -> None:
         factor = self.pacer.achieved(self.sim.time)
-        (x, y, _), orn = self.sim.ground_truth()
-        rospy.loginfo("sim time %.1f s, real-time factor %s, pose x %.2f y %.2f yaw %.2f%s",
-                      self.sim.time, "n/a" if factor is None else "%.2f" % factor, x, y,
-                      yaw_from_quat(orn), " (paused)" if self.paused else "")
+        poses = []
+        for robot in list(self.sim.robots.values())[:4]:
+            (x, y, _), orn = robot.ground_truth()
+            poses.append("%s x %.2f y %.2f yaw %.2f" % (robot.name, x, y, yaw_from_quat(orn)))
+        if len(self.sim.robots) > 4:
+            poses.append("%d more robots" % (len(self.sim.robots) - 4))
+        rospy.loginfo("sim time %.1f s, real-time factor %s, %s%s",
+                      self.sim.time, "n/a" if factor is None else "%.2f" % factor,
+                      "; ".join(poses) or "no robot", " (paused)" if self.paused else "")
 
 
 def _own_the_clock() -> None:
@@ -407,10 +323,15 @@ def main() -> None:
     except UserError as err:
         rospy.logfatal("gazebo: %s", err)
         sys.exit(2)
-    rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
-                  sim.spec.name, config.world, sim.spawn[0], sim.spawn[1], sim.spawn[3],
-                  config.time_step, real_time_factor or "max")
-    if sim.camera is not None:
+    if sim.robot is not None:
+        rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
+                      config.model, config.world, sim.spawn[0], sim.spawn[1], sim.spawn[3],
+                      config.time_step, real_time_factor or "max")
+    else:
+        rospy.loginfo("%s without a robot (spawn_model adds robots), physics step %g s, "
+                      "real-time factor %s", config.world, config.time_step,
+                      real_time_factor or "max")
+    if sim.robot is not None and sim.robot.camera is not None:
         spec = sim.camera_spec
         rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
                       math.degrees(spec.hfov), spec.rate, sim.camera.renderer_name)

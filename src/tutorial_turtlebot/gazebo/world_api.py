@@ -250,9 +250,10 @@ class WorldApi:
         def spawn(req):
             try:
                 self.control.spawn(req.model_name, req.model_xml, pose_in(req.initial_pose),
-                                   req.reference_frame, kind)
+                                   req.reference_frame, kind, req.robot_namespace)
             except RequestError as err:
                 return SpawnModelResponse(False, str(err))
+            self.node.sync_robots()  # a robot URDF: its plugins' topics
             return SpawnModelResponse(True, "SpawnModel: Successfully spawned entity")
         return spawn
 
@@ -261,6 +262,7 @@ class WorldApi:
             self.control.delete(req.model_name)
         except RequestError as err:
             return DeleteModelResponse(False, str(err))
+        self.node.sync_robots()  # a robot's topics go with it
         return DeleteModelResponse(True, "DeleteModel: successfully deleted model")
 
     def _get_physics(self, _req):

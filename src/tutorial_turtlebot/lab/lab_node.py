@@ -7,6 +7,7 @@ import threading
 import time
 from typing import Optional
 
+import rosgraph.names
 import rospy
 from geometry_msgs.msg import Twist
 from sensor_msgs.msg import LaserScan
@@ -51,13 +52,29 @@ def number_param(name: str, default: float, unit: str, above: Optional[float] = 
     return float(value)
 
 
+def init_node(name: str, **kwargs) -> None:
+    """rospy.init_node(name, **kwargs), after checking the namespace the node runs in (from
+    ROS_NAMESPACE, ``__ns:=`` or a launch file's ``ns``): one line on stderr and exit status 2
+    if it is not a legal ROS name, which the master would refuse for every topic while the node
+    waited forever."""
+    namespace = rospy.get_namespace()
+    if not rosgraph.names.is_legal_name(namespace):
+        sys.stderr.write("%s: namespace %r is not a legal ROS name: use letters, digits, _ and /, "
+                         "starting with a letter (e.g. tb3_1)\n" % (name, namespace))
+        sys.exit(2)
+    rospy.init_node(name, **kwargs)
+
+
 def model_name() -> str:
-    """The TurtleBot3 model: parameter ``~model``, else ``model`` (set by the launch files),
-    else $TURTLEBOT3_MODEL, else burger. An unknown name gets a warning naming the valid ones."""
-    for name in ("~model", "model"):
-        if rospy.has_param(name):
-            model, source = rospy.get_param(name), "parameter " + rospy.resolve_name(name)
-            break
+    """The TurtleBot3 model: parameter ``~model``, else ``model`` looked up from the node's
+    namespace upward (for a node in /tb3_2: /tb3_2/model, then /model; set by the launch
+    files), else $TURTLEBOT3_MODEL, else burger. An unknown name gets a warning naming the valid
+    ones."""
+    found = rospy.resolve_name("~model") if rospy.has_param("~model") else None
+    if found is None:
+        found = rospy.search_param("model")
+    if found is not None:
+        model, source = rospy.get_param(found), "parameter " + found
     else:
         model, source = os.environ.get("TURTLEBOT3_MODEL", "burger"), "TURTLEBOT3_MODEL"
     if model not in MODEL_NAMES:

@@ -16,6 +16,7 @@ Parameters: none.
 import rospy
 from sensor_msgs.msg import LaserScan
 
+from .lab_node import init_node
 from .scan_reading import report
 
 
@@ -32,7 +33,7 @@ class LaserData:
 
 def main() -> None:
     """Entry point of scripts/laser_data."""
-    rospy.init_node("laser_data")
+    init_node("laser_data")
     LaserData()
     rospy.loginfo("waiting for scans on %s", rospy.resolve_name("scan"))
     rospy.spin()

@@ -20,7 +20,7 @@ import sys
 import rospy
 
 from ..errors import UserError
-from .lab_node import (CommandPublisher, model_name, number_param,
+from .lab_node import (CommandPublisher, init_node, model_name, number_param,
                        shut_down_on_signals)
 from .move_args import (SETTINGS, USAGE, command_line_settings, parse, user_args,
                         wants_help)
@@ -66,7 +66,7 @@ def main(argv=None) -> None:
         sys.exit(2)
 
     settings, ros_argv = command_line_settings(argv)
-    rospy.init_node("move_turtlebot", argv=ros_argv, disable_signals=True)
+    init_node("move_turtlebot", argv=ros_argv, disable_signals=True)
     shut_down_on_signals()
     for name in sorted(set(settings) - set(SETTINGS)):
         rospy.logwarn("_%s:=%s ignored: move_turtlebot's settings are %s"

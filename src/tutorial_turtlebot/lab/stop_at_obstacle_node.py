@@ -26,7 +26,7 @@ import math
 
 import rospy
 
-from .lab_node import ScanToCommand, model_name, number_param
+from .lab_node import ScanToCommand, init_node, model_name, number_param
 from .obstacle_logic import StopAtObstacle
 from ..sim.robot_models import model_limits
 
@@ -50,7 +50,7 @@ class StopAtObstacleNode:
 
 def main() -> None:
     """Entry point of scripts/stop_at_obstacle."""
-    rospy.init_node("stop_at_obstacle")
+    init_node("stop_at_obstacle")
     speed = number_param("~speed", 0.15, "m/s", above=0.0)
     stop_distance = number_param("~stop_distance", 0.5, "m", above=0.0)
     sector_deg = number_param("~sector_deg", 15.0, "degrees", above=0.0, at_most=180.0)

@@ -6,13 +6,16 @@ movement key) stops smoothly, Ctrl-C quits. It starts at "speed 0.2 turn 1" (m/s
 ramps the output by at most 0.02 m/s and 0.1 rad/s per loop, within the model's limits.
 The banner and status lines are printed on stdout (a terminal UI). The terminal's settings are
 restored however it exits; with no terminal on stdin it prints one line and exits with status 2.
+In a namespace (``ROS_NAMESPACE=tb3_1 rosrun tutorial_turtlebot teleop_key``) it drives that
+robot, /tb3_1/cmd_vel, and the banner's first line names the topic.
 
 Publishes:
     cmd_vel (geometry_msgs/Twist, queue 10): linear.x m/s, angular.z rad/s, once per loop
         (each key, or every 0.1 s of wall time without one); a zero Twist on exit.
 
 Parameters:
-    ~model, else model (str, default $TURTLEBOT3_MODEL or burger): sets the limits, burger
+    ~model, else model from the node's namespace upward (/tb3_1/model, then /model) (str,
+        default $TURTLEBOT3_MODEL or burger): sets the limits, burger
         0.22 m/s and 2.84 rad/s, waffle and waffle_pi 0.26 m/s and 1.82 rad/s (unknown: burger).
 """
 import sys
@@ -20,7 +23,7 @@ import sys
 import rospy
 
 from ..errors import UserError
-from .lab_node import CommandPublisher, model_name
+from .lab_node import CommandPublisher, init_node, model_name
 from ..sim.robot_models import model_limits
 from .teleop_keys import Teleop
 from .terminal_keys import TerminalKeys
@@ -35,6 +38,7 @@ class TeleopKey:
         self.teleop = teleop
         self.keys = keys
         self.publisher = CommandPublisher(queue_size=10)
+        self.teleop.topic = self.publisher.topic
 
     def run(self) -> None:
         """Loop until shutdown; call inside ``with self.keys``."""
@@ -54,7 +58,7 @@ def main() -> None:
     except UserError as err:
         sys.stderr.write("teleop_key: %s\n" % err)
         sys.exit(2)
-    rospy.init_node("turtlebot3_teleop_keyboard")
+    init_node("turtlebot3_teleop_keyboard")
     model = model_name()
     max_linear, max_angular = model_limits(model)
     node = TeleopKey(Teleop(max_linear, max_angular, model), keys)

@@ -63,13 +63,16 @@ def _clamp(value: float, limit: float) -> float:
 
 class Teleop:
     """State of the keyboard teleop for a robot limited to ``max_linear`` m/s and
-    ``max_angular`` rad/s; ``model`` only names the robot in the banner."""
+    ``max_angular`` rad/s; ``model`` only names the robot in the banner, and so does ``topic``
+    (the resolved cmd_vel) where it is not plain /cmd_vel: with one terminal per robot, the
+    first line of each says which robot it drives."""
 
     def __init__(self, max_linear: float, max_angular: float, model: str = "burger",
-                 speed: float = 0.2, turn: float = 1.0):
+                 speed: float = 0.2, turn: float = 1.0, topic: str = "/cmd_vel"):
         self.max_linear = max_linear
         self.max_angular = max_angular
         self.model = model
+        self.topic = topic
         self.speed = min(speed, max_linear)   # m/s for a full x
         self.turn = min(turn, max_angular)    # rad/s for a full th
         self.x = 0
@@ -80,8 +83,11 @@ class Teleop:
         self.status_count = 0
 
     def banner(self) -> str:
-        """The handout's banner, with this robot's limits."""
-        return BANNER + "%s: speed up to %g m/s, turn up to %g rad/s\n" % (
+        """The handout's banner, with this robot's limits (and its topic, see the class)."""
+        banner = BANNER
+        if self.topic != "/cmd_vel":
+            banner = banner.replace("TurtleBot3!\n", "TurtleBot3! (driving %s)\n" % self.topic, 1)
+        return banner + "%s: speed up to %g m/s, turn up to %g rad/s\n" % (
             self.model, self.max_linear, self.max_angular)
 
     def status(self) -> str:

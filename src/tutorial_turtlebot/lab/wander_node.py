@@ -27,13 +27,14 @@ Parameters:
         corridor kept clear: the radius the robot sweeps turning in place. Must be less than
         ~stop_distance.
     ~scan_timeout (float, s, default 1.0): stop when scans stop coming for this long.
-    ~model, else model (str, default $TURTLEBOT3_MODEL or burger): for the defaults and warnings.
+    ~model, else model from the node's namespace upward (/tb3_2/model, then /model) (str,
+        default $TURTLEBOT3_MODEL or burger): for the defaults and warnings.
 """
 import math
 
 import rospy
 
-from .lab_node import ScanToCommand, fatal, model_name, number_param
+from .lab_node import ScanToCommand, fatal, init_node, model_name, number_param
 from .obstacle_logic import FORWARD, Wander, turn_radius
 from ..sim.robot_models import model_limits
 
@@ -58,7 +59,7 @@ class WanderNode:
 
 def main() -> None:
     """Entry point of scripts/wander."""
-    rospy.init_node("wander")
+    init_node("wander")
     model = model_name()
     speed = number_param("~speed", 0.2, "m/s", above=0.0)
     turn_speed = number_param("~turn_speed", 1.0, "rad/s", above=0.0)

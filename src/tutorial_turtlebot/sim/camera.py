@@ -24,7 +24,7 @@ import numpy as np
 
 from .bullet import pybullet
 from ..errors import UserError
-from .robot_models import CameraSpec
+from .robot_plugins import CameraSpec
 
 try:  # Debian/Ubuntu python3-pil, PyPI Pillow
     from PIL import Image as _PilImage

@@ -7,7 +7,7 @@ hls_lfcd_lds_driver publishes (exact 1 degree steps, 0.0 for no return or too cl
 Angles are in the ``base_scan`` frame, counter-clockwise from +x; distances in metres.
 """
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -45,6 +45,15 @@ def laser_config(name: str) -> LaserConfig:
     except (KeyError, TypeError):
         raise UserError("unknown lidar_model %r: valid are %s"
                         % (name, ", ".join(LASER_MODELS))) from None
+
+
+def as_real_driver(laser: LaserConfig) -> LaserConfig:
+    """``laser`` as the real hls_lfcd_lds_driver publishes a full turn: ``samples`` equal steps
+    of 2*pi/samples from angle_min (exactly 1 degree for 360), 0.0 for no return or too close."""
+    step = 2.0 * math.pi / laser.samples
+    return replace(laser, name="lds01", angle_increment=step,
+                   angle_max=laser.angle_min + step * (laser.samples - 1), no_return=0.0,
+                   too_close=0.0)
 
 
 def ray_directions(cfg: LaserConfig) -> np.ndarray:

@@ -1,13 +1,15 @@
-"""One TurtleBot3 in a world, simulated by pybullet (DIRECT, headless). Knows nothing of ROS.
+"""The physics of a world and the robots in it, simulated by pybullet. Knows nothing of ROS.
 
-Frames: ``world`` is the SDF world frame (z up); the robot's reference frame is
-``base_footprint`` (on the floor between the wheels, x forward). pybullet places a body by its
-centre of mass, so every pose here is converted to and from ``base_footprint``.
+``WorldPhysics`` is one pybullet client (headless, or pybullet's window): the world's bodies,
+gravity, the step, ray casts. ``RobotBody`` is one robot URDF loaded into it. Frames: ``world``
+is the SDF world frame (z up); a robot's reference frame is its root link (``base_footprint``
+on a TurtleBot3: on the floor between the wheels, x forward). pybullet places a body by its
+centre of mass, so every pose here is converted to and from the root link.
 Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
 import os
 import tempfile
-from typing import Dict, Sequence, Tuple
+from typing import Dict, List, Sequence, Tuple
 from xml.etree import ElementTree
 
 import numpy as np
@@ -15,17 +17,20 @@ import numpy as np
 from . import gui_window
 from .bullet import pybullet, quiet_output
 from .camera import disable_egl, enable_egl
-from .robot_models import ModelSpec
 from .urdf_file import RobotDescription
-from .world_bullet import WORLD_COLLISION_GROUP, build_world
+from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP, build_world
 from .world_sdf import World
+from ..errors import UserError
 
 
 Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]
 
 GRAVITY = 9.8                    # m/s^2, Gazebo's default
-ROBOT_COLLISION_GROUP = 2        # rays test the world only, never the robot itself
-WHEEL_JOINTS = ("wheel_left_joint", "wheel_right_joint")
+# Each robot has a collision group bit of its own: it collides with everything, and its laser's
+# rays test the world and every other robot but never itself. Bullet's groups are 32-bit ints.
+FIRST_ROBOT_BIT = 4
+MAX_ROBOTS = 24
+ROBOT_GROUPS = ((1 << MAX_ROBOTS) - 1) << FIRST_ROBOT_BIT
 # Tyre on floor (pybullet multiplies the two surfaces' values; the floor's is 1): enough grip
 # for the 1 m/s^2 ramp with margin, little enough that a robot pushing a wall spins its wheels
 # instead of climbing it (at 1.0 a Burger pressed into a corner reared up by 0.37 rad).
@@ -53,22 +58,19 @@ def _urdf_for_bullet(path: str) -> str:
     return out
 
 
-class TurtleBotPhysics:
-    """pybullet client holding the world's static bodies and one TurtleBot3."""
+class WorldPhysics:
+    """One pybullet client: the world's bodies, gravity, the physics step, ray casts."""
 
-    def __init__(self, spec: ModelSpec, description: RobotDescription, world: World,
-                 spawn: Sequence[float], time_step: float, solver_iterations: int = 20,
+    def __init__(self, world: World, time_step: float, solver_iterations: int = 20,
                  gui: bool = False, egl: bool = False):
-        """``spawn`` is (x, y, z, yaw) of base_footprint in the world; ``gui`` opens pybullet's
-        own window (the caller checks that a display exists); ``egl`` loads the EGL renderer for
-        cameras where it works here (see ``self.egl``)."""
-        self.spec = spec
-        self.description = description
+        """``gui`` opens pybullet's own window (the caller checks that a display exists);
+        ``egl`` loads the EGL renderer for cameras where it works here (see ``self.egl``)."""
         self.time_step = time_step
         self.client = gui_window.open_window() if gui else pybullet.connect(pybullet.DIRECT)
         if self.client < 0:
             raise RuntimeError("pybullet could not open its window")
         cid = self.client
+        self.gui = gui
         self.egl = False
         if egl and not gui:  # before any body: the plugin draws only bodies created after it
             with quiet_output():
@@ -78,77 +80,136 @@ class TurtleBotPhysics:
         pybullet.setPhysicsEngineParameter(numSolverIterations=solver_iterations,
                                            physicsClientId=cid)
         self.world_bodies = build_world(world, cid)
-        self.robot = self._load_robot(description.path)
+        self._free_bits: List[int] = [1 << (FIRST_ROBOT_BIT + i) for i in range(MAX_ROBOTS)]
+
+    def step(self) -> None:
+        """Advance physics by one time step."""
+        pybullet.stepSimulation(physicsClientId=self.client)
+
+    def take_robot_bit(self) -> int:
+        """A collision group bit for a new robot; UserError when MAX_ROBOTS run already."""
+        if not self._free_bits:
+            raise UserError("at most %d robots can run in one simulation" % MAX_ROBOTS)
+        return self._free_bits.pop(0)
+
+    def give_back_robot_bit(self, bit: int) -> None:
+        self._free_bits.append(bit)
+        self._free_bits.sort()
+
+    def ray_distances(self, origin: np.ndarray, directions: np.ndarray, max_range: float,
+                      mask: int = WORLD_COLLISION_GROUP) -> np.ndarray:
+        """Distance (m) from ``origin`` along each world-frame unit direction to the first
+        surface of a body in a collision group of ``mask``; inf where none is hit within
+        ``max_range``."""
+        ends = origin + directions * max_range
+        starts = np.broadcast_to(origin, ends.shape)
+        hits = pybullet.rayTestBatch(starts.tolist(), ends.tolist(), collisionFilterMask=mask,
+                                     physicsClientId=self.client)
+        return np.array([h[2] * max_range if h[0] >= 0 else np.inf for h in hits])
+
+    def close(self) -> None:
+        """Disconnect the pybullet client."""
+        if self.client is not None:
+            with quiet_output():  # the window's threads say goodbye on fd 1 and 2
+                disable_egl(self.client)  # client ids are reused after a disconnect
+                pybullet.disconnect(physicsClientId=self.client)
+            self.client = None
+
+
+class RobotBody:
+    """One robot URDF in a WorldPhysics: its pose, velocity, wheels and frames."""
+
+    def __init__(self, physics: WorldPhysics, description: RobotDescription, spawn_pose: Pose,
+                 wheel_joints: Sequence[str] = (), wheel_torque: float = 0.0):
+        """``spawn_pose``: the root link's world pose; ``wheel_joints``: (left, right) joint
+        names driven by velocity with at most ``wheel_torque`` N*m, or () for none."""
+        self.physics = physics
+        self.client = physics.client
+        self.description = description
+        self.wheel_torque = wheel_torque
+        self.collision_bit = physics.take_robot_bit()
+        # rays of this robot's sensors: the world and every other robot
+        self.ray_mask = (WORLD_COLLISION_GROUP | ROBOT_GROUPS) & ~self.collision_bit
+        try:
+            self.robot = self._load(description.path)
+        except Exception:
+            physics.give_back_robot_bit(self.collision_bit)
+            raise
+        cid = self.client
         self._com_in_footprint = pybullet.getDynamicsInfo(self.robot, -1, physicsClientId=cid)[3:5]
         self._footprint_in_com = pybullet.invertTransform(*self._com_in_footprint)
-        self.wheels = self._wheel_indices()
+        self.wheels = self._wheel_indices(wheel_joints)
         self._frames: Dict[str, np.ndarray] = {}
-        x, y, z, yaw = spawn
-        self.spawn_pose: Pose = ((x, y, z + SPAWN_CLEARANCE),
-                                 tuple(pybullet.getQuaternionFromEuler((0.0, 0.0, yaw))))
+        (x, y, z), orn = spawn_pose
+        self.spawn_pose: Pose = ((x, y, z + SPAWN_CLEARANCE), tuple(orn))
         self.reset_robot()
-        if gui:
-            gui_window.look_at(cid, (x, y, z), yaw)
 
-    def _load_robot(self, path: str) -> int:
+    def _load(self, path: str) -> int:
         cid = self.client
         tmp = _urdf_for_bullet(path)
         try:
             with quiet_output():
                 robot = pybullet.loadURDF(
                     tmp, flags=(pybullet.URDF_MERGE_FIXED_LINKS | pybullet.URDF_USE_INERTIA_FROM_FILE
-                           | pybullet.URDF_USE_IMPLICIT_CYLINDER),
+                                | pybullet.URDF_USE_IMPLICIT_CYLINDER),
                     physicsClientId=cid)
         finally:
             os.unlink(tmp)
         for link in range(-1, pybullet.getNumJoints(robot, physicsClientId=cid)):
-            pybullet.setCollisionFilterGroupMask(robot, link, ROBOT_COLLISION_GROUP, 0xFFFF,
-                                                 physicsClientId=cid)
+            pybullet.setCollisionFilterGroupMask(robot, link, self.collision_bit,
+                                                 ALL_COLLISION_GROUPS, physicsClientId=cid)
             pybullet.changeDynamics(robot, link, lateralFriction=BODY_FRICTION,
                                     spinningFriction=0.0, rollingFriction=0.0, restitution=0.0,
-                                    linearDamping=0.0, angularDamping=0.0, physicsClientId=cid)
+                                    linearDamping=0.0, angularDamping=0.0,
+                                    activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
+                                    physicsClientId=cid)
         return robot
 
-    def _wheel_indices(self) -> Tuple[int, int]:
+    def _wheel_indices(self, names: Sequence[str]) -> Tuple[int, ...]:
         cid = self.client
         by_name = {pybullet.getJointInfo(self.robot, j, physicsClientId=cid)[1].decode(): j
                    for j in range(pybullet.getNumJoints(self.robot, physicsClientId=cid))}
-        wheels = tuple(by_name[name] for name in WHEEL_JOINTS)
+        wheels = tuple(by_name[name] for name in names)
         for j in wheels:
             pybullet.changeDynamics(self.robot, j, lateralFriction=WHEEL_FRICTION,
                                     physicsClientId=cid)
-            # Free-spinning until commanded: pybullet's default velocity motor would brake.
-            pybullet.setJointMotorControl2(self.robot, j, pybullet.VELOCITY_CONTROL,
-                                           targetVelocity=0.0, force=self.spec.wheel_torque,
-                                           physicsClientId=cid)
         return wheels
 
-    # --- commands and stepping -----------------------------------------------------------------
+    # --- commands ------------------------------------------------------------------------------
 
     def set_wheel_velocities(self, left: float, right: float) -> None:
-        """Joint velocity targets in rad/s, reached with at most the model's wheel torque."""
-        pybullet.setJointMotorControlArray(
-            self.robot, self.wheels, pybullet.VELOCITY_CONTROL, targetVelocities=(left, right),
-            forces=(self.spec.wheel_torque,) * 2, physicsClientId=self.client)
-
-    def step(self) -> None:
-        """Advance physics by one time step."""
-        pybullet.stepSimulation(physicsClientId=self.client)
+        """Joint velocity targets in rad/s, reached with at most the wheel torque."""
+        if self.wheels:
+            pybullet.setJointMotorControlArray(
+                self.robot, self.wheels, pybullet.VELOCITY_CONTROL,
+                targetVelocities=(left, right), forces=(self.wheel_torque,) * 2,
+                physicsClientId=self.client)
 
     def reset_robot(self) -> None:
-        """Put the robot back at its spawn pose, at rest, wheels at angle 0."""
+        """Put the robot back at its spawn pose, at rest, every joint at angle 0."""
+        self.place(self.spawn_pose)
         cid = self.client
-        pos, orn = pybullet.multiplyTransforms(*self.spawn_pose, *self._com_in_footprint)
+        for j in range(pybullet.getNumJoints(self.robot, physicsClientId=cid)):
+            pybullet.resetJointState(self.robot, j, 0.0, 0.0, physicsClientId=cid)
+        # Free-spinning until commanded: pybullet's default velocity motor would brake.
+        self.set_wheel_velocities(0.0, 0.0)
+
+    def place(self, pose: Pose) -> None:
+        """Put the root link at world ``pose``, at rest."""
+        cid = self.client
+        pos, orn = pybullet.multiplyTransforms(*pose, *self._com_in_footprint)
         pybullet.resetBasePositionAndOrientation(self.robot, pos, orn, physicsClientId=cid)
         pybullet.resetBaseVelocity(self.robot, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
-        for j in self.wheels:
-            pybullet.resetJointState(self.robot, j, 0.0, 0.0, physicsClientId=cid)
-        self.set_wheel_velocities(0.0, 0.0)
+
+    def remove(self) -> None:
+        """Take the robot out of the world."""
+        pybullet.removeBody(self.robot, physicsClientId=self.client)
+        self.physics.give_back_robot_bit(self.collision_bit)
 
     # --- state -----------------------------------------------------------------------------------
 
     def footprint_pose(self) -> Pose:
-        """World pose of base_footprint: ((x, y, z), (qx, qy, qz, qw))."""
+        """World pose of the root link (base_footprint): ((x, y, z), (qx, qy, qz, qw))."""
         com = pybullet.getBasePositionAndOrientation(self.robot, physicsClientId=self.client)
         return pybullet.multiplyTransforms(*com, *self._footprint_in_com)
 
@@ -163,7 +224,7 @@ class TurtleBotPhysics:
         return (pl, pr), (vl, vr)
 
     def frame_in_footprint(self, frame: str) -> np.ndarray:
-        """4x4 pose of a URDF frame (base_scan, imu_link, camera...) in base_footprint."""
+        """4x4 pose of a URDF frame (base_scan, imu_link, camera...) in the root link."""
         if frame not in self._frames:
             root = self.description.root_link
             self._frames[frame] = self.description.transform(root, frame)
@@ -175,22 +236,3 @@ class TurtleBotPhysics:
         rot = np.array(pybullet.getMatrixFromQuaternion(orn)).reshape(3, 3)
         local = self.frame_in_footprint(frame)
         return np.array(pos) + rot @ local[:3, 3], rot @ local[:3, :3]
-
-    def ray_distances(self, origin: np.ndarray, directions: np.ndarray,
-                      max_range: float) -> np.ndarray:
-        """Distance (m) from ``origin`` along each world-frame unit direction to the first world
-        surface; inf where nothing is hit within ``max_range``. The robot never hits itself."""
-        ends = origin + directions * max_range
-        starts = np.broadcast_to(origin, ends.shape)
-        hits = pybullet.rayTestBatch(starts.tolist(), ends.tolist(),
-                                     collisionFilterMask=WORLD_COLLISION_GROUP,
-                                     physicsClientId=self.client)
-        return np.array([h[2] * max_range if h[0] >= 0 else np.inf for h in hits])
-
-    def close(self) -> None:
-        """Disconnect the pybullet client."""
-        if self.client is not None:
-            with quiet_output():  # the window's threads say goodbye on fd 1 and 2
-                disable_egl(self.client)  # client ids are reused after a disconnect
-                pybullet.disconnect(physicsClientId=self.client)
-            self.client = None

@@ -1,7 +1,10 @@
-"""The three TurtleBot3 models: drive geometry, speed limits and sensors (tb3_facts.md 1, 2).
+"""The three TurtleBot3 models: what no URDF holds (tb3_facts.md 2.5).
 
-Units: metres, seconds, radians. Frames follow REP 103/105.
+A robot's drive, laser, IMU and camera come from its URDF's ``<gazebo>`` blocks
+(``robot_plugins``); what is here is the firmware's and turtlebot3_teleop_key's speed limits and
+which URDF file each model is. Units: m/s, rad/s.
 """
+import re
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
@@ -9,32 +12,13 @@ from ..errors import ModelError
 
 
 @dataclass(frozen=True)
-class CameraSpec:
-    """An RGB camera mounted at ``frame`` (the URDF link whose optical frame it renders)."""
-
-    width: int
-    height: int
-    hfov: float            # horizontal field of view, rad
-    rate: float            # Hz, sim time
-    near: float = 0.03     # clip planes, m
-    far: float = 100.0
-    depth: bool = False    # also publishes /camera/depth/* (RealSense R200)
-    baseline: float = 0.0  # gazebo_ros hackBaseline, m (P[3] = -f * baseline)
-
-
-@dataclass(frozen=True)
 class ModelSpec:
-    """One TurtleBot3 model as the diff-drive plugin and the teleop node see it."""
+    """One TurtleBot3 model's name, speed limits, and whether its URDF carries a camera."""
 
     name: str
-    wheel_separation: float     # m, between wheel centres
-    wheel_radius: float         # m
     max_linear: float           # m/s, firmware / teleop limit
     max_angular: float          # rad/s
-    camera: Optional[CameraSpec]  # the camera it carries by default, None for burger
-    optional_camera: Optional[CameraSpec] = None  # camera:=true on a model without one
-    wheel_torque: float = 10.0       # N*m, joint fmax of the Gazebo plugin
-    wheel_acceleration: float = 1.0  # m/s^2 at the wheel rim (Gazebo wheelAcceleration)
+    carries_camera: bool        # False: camera:=true picks the AutoRace variant's URDF
 
     @property
     def urdf_name(self) -> str:
@@ -42,19 +26,14 @@ class ModelSpec:
         return "turtlebot3_%s.urdf" % self.name
 
 
-# The AutoRace burger's Pi camera, pitched 10 degrees down (tb3_facts 4.5).
-AUTORACE_CAMERA = CameraSpec(width=320, height=240, hfov=1.085595, rate=30.0)
-
 MODELS = {
-    "burger": ModelSpec("burger", 0.160, 0.033, 0.22, 2.84, camera=None,
-                        optional_camera=AUTORACE_CAMERA),
-    "waffle": ModelSpec("waffle", 0.287, 0.033, 0.26, 1.82,
-                        camera=CameraSpec(1920, 1080, 1.3439, 30.0, depth=True, baseline=0.07)),
-    "waffle_pi": ModelSpec("waffle_pi", 0.287, 0.033, 0.26, 1.82,
-                           camera=CameraSpec(640, 480, 1.085595, 30.0, baseline=0.07)),
+    "burger": ModelSpec("burger", 0.22, 2.84, carries_camera=False),
+    "waffle": ModelSpec("waffle", 0.26, 1.82, carries_camera=True),
+    "waffle_pi": ModelSpec("waffle_pi", 0.26, 1.82, carries_camera=True),
 }
 
 MODEL_NAMES: Tuple[str, ...] = tuple(MODELS)
+_IN_ROBOT_NAME = re.compile(r"turtlebot3_(waffle_pi|waffle|burger)")
 
 
 def get_model(name: str) -> ModelSpec:
@@ -71,3 +50,10 @@ def model_limits(name: str) -> Tuple[float, float]:
     name gets the burger limits."""
     spec = MODELS.get(name, MODELS["burger"])
     return spec.max_linear, spec.max_angular
+
+
+def turtlebot3_model_of(robot_name: str) -> Optional[str]:
+    """The TurtleBot3 model a URDF's ``<robot name>`` names (turtlebot3_waffle_pi ->
+    waffle_pi; turtlebot3_burger_for_autorace -> burger), None for any other robot."""
+    match = _IN_ROBOT_NAME.search(robot_name or "")
+    return match.group(1) if match else None

@@ -4,10 +4,12 @@ Two kinds, as Gazebo's spawn services take them (gazebo_api.md 2.4):
 - SDF: ``<sdf>`` (or ``<gazebo>``) holding one ``<model>`` of primitive shapes (world_sdf's
   subset): it becomes a ``World`` of that one model, renamed and placed;
 - URDF: ``<robot>`` of links and joints with box, cylinder or sphere geometry and no robot
-  plugins: it becomes URDF text with the requested name, which pybullet loads.
+  plugins: it becomes URDF text with the requested name, which pybullet loads;
+- a robot: a URDF whose ``<gazebo>`` blocks hold plugins: its text as given (``robot``), which
+  the simulation builds with its plugins (``Simulation.add_robot``).
 Refused, with one line saying why (a RequestError whose text is the service's status message):
 text over ``MAX_XML_BYTES``, nesting deeper than world_sdf.MAX_XML_DEPTH, a DOCTYPE, malformed
-XML (with its line), an unknown root, meshes, plugins.
+XML (with its line), an unknown root, meshes.
 """
 from dataclasses import dataclass
 from typing import Optional
@@ -25,11 +27,13 @@ PREFIX = "SpawnModel: Failure - "
 
 @dataclass
 class SpawnRequest:
-    """A parsed spawn: exactly one of ``world`` (SDF) and ``urdf`` (URDF text) is set."""
+    """A parsed spawn: exactly one of ``world`` (SDF), ``urdf`` (URDF text of a plain model)
+    and ``robot`` (URDF text of a robot with plugins) is set."""
 
     name: str
     world: Optional[World] = None
     urdf: Optional[str] = None
+    robot: Optional[str] = None
 
 
 def _check_size(xml: str) -> None:
@@ -50,7 +54,13 @@ def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "s
     except WorldError as err:
         raise RequestError(PREFIX + str(err)) from None
     if root.tag == "robot":
-        return SpawnRequest(name, urdf=_urdf(name, xml))
+        try:
+            robot = ElementTree.fromstring(xml)
+        except ElementTree.ParseError as err:
+            raise RequestError(PREFIX + "model_xml: malformed XML: %s" % err) from None
+        if any(gazebo.find(".//plugin") is not None for gazebo in robot.iter("gazebo")):
+            return SpawnRequest(name, robot=xml)
+        return SpawnRequest(name, urdf=_urdf(name, robot))
     if kind == "urdf":
         raise RequestError(PREFIX + "spawn_urdf_model needs a <robot> root element, got <%s>"
                            % root.tag)
@@ -69,16 +79,9 @@ def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "s
     return SpawnRequest(name, world=world)
 
 
-def _urdf(name: str, xml: str) -> str:
-    """The URDF text renamed ``name``; RequestError for what this simulator cannot load."""
-    try:
-        robot = ElementTree.fromstring(xml)
-    except ElementTree.ParseError as err:
-        raise RequestError(PREFIX + "model_xml: malformed XML: %s" % err) from None
-    for gazebo in robot.iter("gazebo"):
-        if gazebo.find(".//plugin") is not None:
-            raise RequestError(PREFIX + "URDF robot plugins (<gazebo><plugin>) are not "
-                                        "supported: spawn links and joints only")
+def _urdf(name: str, robot: ElementTree.Element) -> str:
+    """The URDF text of ``robot`` renamed ``name``; RequestError for what this simulator
+    cannot load."""
     links = robot.findall("link")
     if not links:
         raise RequestError(PREFIX + "the URDF <robot> has no <link>")

@@ -3,7 +3,8 @@
 Units: metres, kilograms, kg*m^2, radians. A ``Pose`` is a child frame's origin in its parent
 frame: ``xyz`` then ``rpy`` as URDF defines it (fixed axes: R = Rz(yaw) * Ry(pitch) * Rx(roll)).
 Every problem with the file raises ``UrdfError`` whose message is one line:
-``<file>:<line>: <element at fault>: <what is wrong>``.
+``<file>:<line>: <element at fault>: <what is wrong>``. The ``<gazebo>`` blocks (plugins and
+sensors) are read by ``robot_plugins.read_plugins`` into ``RobotDescription.plugins``.
 """
 import math
 from dataclasses import dataclass, field
@@ -17,6 +18,7 @@ import numpy as np
 from ..errors import UrdfError
 from .package_data import data_dir
 from .robot_models import get_model
+from .robot_plugins import RobotPlugins, read_plugins
 
 URDF_DIR = Path(data_dir("urdf"))
 NAMED = ("robot", "link", "joint", "material")  # elements that errors call by name
@@ -110,13 +112,16 @@ class Joint:
 @dataclass(frozen=True)
 class RobotDescription:
     """A whole robot: links and joints by name, in file order. The tree is checked on reading:
-    every joint names known links, each link has at most one parent, there is one root."""
+    every joint names known links, each link has at most one parent, there is one root.
+    ``plugins``: what its ``<gazebo>`` blocks declare. ``path``: the file, or for a URDF read
+    from text the name its errors give (e.g. "spawn_urdf_model tb3_3")."""
 
     name: str
     path: str
     links: Dict[str, Link]
     joints: Dict[str, Joint]
     _parent_joint: Dict[str, Joint] = field(init=False, repr=False, compare=False)
+    plugins: RobotPlugins = RobotPlugins()
 
     def __post_init__(self):
         object.__setattr__(self, "_parent_joint", {j.child: j for j in self.joints.values()})
@@ -159,7 +164,7 @@ def urdf_path(model_name: str, with_camera: bool = False) -> str:
     """Path of the URDF shipped for a TurtleBot3 model. ``with_camera`` on a model that carries no
     camera (burger) gives its AutoRace variant; an unknown model raises ModelError."""
     spec = get_model(model_name)
-    if with_camera and spec.camera is None:
+    if with_camera and not spec.carries_camera:
         return str(URDF_DIR / ("turtlebot3_%s_for_autorace.urdf" % spec.name))
     return str(URDF_DIR / spec.urdf_name)
 
@@ -169,11 +174,20 @@ def read_urdf(path) -> RobotDescription:
     return _Reader(str(path)).read()
 
 
-class _Reader:
-    """One pass over one file; knows each element's line for the error messages."""
+def read_urdf_text(xml: str, source: str) -> RobotDescription:
+    """Read and check a URDF given as text (e.g. a spawn_urdf_model request); ``source`` names
+    it in the one-line UrdfError that any problem raises, and is the result's ``path``."""
+    if not isinstance(xml, (str, bytes)):
+        raise UrdfError("%s: the URDF must be text, not %s" % (source, type(xml).__name__))
+    return _Reader(source, xml).read()
 
-    def __init__(self, path: str):
+
+class _Reader:
+    """One pass over one file (or text); knows each element's line for the error messages."""
+
+    def __init__(self, path: str, text=None):
         self.path = path
+        self.text = text
         self.lines: Dict[ElementTree.Element, int] = {}
 
     def read(self) -> RobotDescription:
@@ -207,7 +221,9 @@ class _Reader:
             joints[joint.name] = joint
             parent_of[joint.child] = elem
         self._check_tree(root, links, joints)
-        return RobotDescription(name, self.path, links, joints)
+        plugins = read_plugins(root, links, {j.name: j.type for j in joints.values()},
+                               self.path, self.lines)
+        return RobotDescription(name, self.path, links, joints, plugins)
 
     def _parse_xml(self) -> ElementTree.Element:
         builder = ElementTree.TreeBuilder()
@@ -218,9 +234,13 @@ class _Reader:
 
         parser.StartElementHandler = start
         parser.EndElementHandler = builder.end
+        parser.CharacterDataHandler = builder.data  # the <gazebo> blocks' values are text
         try:
-            with open(self.path, "rb") as stream:
-                parser.ParseFile(stream)
+            if self.text is not None:
+                parser.Parse(self.text, True)
+            else:
+                with open(self.path, "rb") as stream:
+                    parser.ParseFile(stream)
         except OSError as err:
             raise UrdfError("%s: cannot read URDF file: %s" % (self.path, err.strerror)) from None
         except expat.ExpatError as err:

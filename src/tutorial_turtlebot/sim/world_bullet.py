@@ -24,12 +24,14 @@ from .world_sdf import Inertial, Link, Shape, World
 # collisionFilterMask=WORLD_COLLISION_GROUP, and other bodies (the robot) use another group.
 # Bullet also tests the ray's own group (1) against a body's mask, so the mask keeps bit 1; it
 # drops the world's own bit, so that static bodies never test each other (wasted work every step).
+# Robots (physics.RobotBody) take one bit each of the higher ones, up to ALL_COLLISION_GROUPS.
 WORLD_COLLISION_GROUP = 4
-WORLD_COLLISION_MASK = 0xFFFF & ~WORLD_COLLISION_GROUP
+ALL_COLLISION_GROUPS = (1 << 28) - 1
+WORLD_COLLISION_MASK = ALL_COLLISION_GROUPS & ~WORLD_COLLISION_GROUP
 # Movable bodies: in the world's group (the laser sees them) and one of their own, which the
 # static bodies' mask keeps, so that they rest on the floor and hit walls.
 MOVABLE_COLLISION_GROUP = WORLD_COLLISION_GROUP | 8
-MOVABLE_COLLISION_MASK = 0xFFFF
+MOVABLE_COLLISION_MASK = ALL_COLLISION_GROUPS
 MOVABLE_KINDS = ("box", "cylinder", "sphere")
 
 WORLD_FRICTION = 1.0        # lateral friction coefficient of every world surface

@@ -8,10 +8,12 @@ Poses and twists as in reference_frames.
 """
 import os
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import List, Optional, Tuple
 
+from ..errors import UserError
 from .bullet import pybullet, quiet_output
+from .urdf_file import read_urdf_text
 from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
 from .reference_frames import Pose, Twist
@@ -140,8 +142,9 @@ class WorldControl:
     # --- spawn and delete --------------------------------------------------------------------
 
     def spawn(self, name: str, xml: str, pose: Pose, reference: str = "",
-              kind: str = "sdf") -> None:
-        """Add model ``name`` built from ``xml`` at ``pose`` (in ``reference``)."""
+              kind: str = "sdf", robot_namespace: str = "") -> None:
+        """Add model ``name`` built from ``xml`` at ``pose`` (in ``reference``); a robot URDF
+        (one with plugins) becomes a robot whose topics and frames are in ``robot_namespace``."""
         check_model_name(name)
         if name in self.models:
             raise RequestError("SpawnModel: Failure - entity already exists.")
@@ -160,12 +163,30 @@ class WorldControl:
             raise RequestError("SpawnModel: Failure - %s" % err) from None
         request = parse_spawn(name, xml, pose, kind)
         cid = self.sim.physics.client
+        if request.robot is not None:
+            self._add_robot(name, request.robot, pose, robot_namespace)
+            return
         if request.world is not None:
             bodies = build_world(request.world, cid)
             model = models_of_world(request.world, bodies, cid, source="spawned")[0]
         else:
             model = self._load_urdf(name, request.urdf, pose)
         self.models.add(model)
+
+    def _add_robot(self, name: str, urdf: str, pose: Pose, namespace: str) -> None:
+        """A robot with its URDF's plugins; its <gazebo> blocks are checked before anything
+        is built (a bad one refuses the spawn naming the element)."""
+        fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_robot_")
+        try:
+            with os.fdopen(fd, "w") as f:
+                f.write(urdf)
+            try:
+                description = read_urdf_text(urdf, "model_xml of %s" % name)
+            except UserError as err:
+                raise RequestError("SpawnModel: Failure - %s" % err) from None
+            self.sim.add_robot(name, namespace, replace(description, path=path), pose)
+        finally:
+            os.unlink(path)
 
     def _load_urdf(self, name: str, urdf: str, pose: Pose) -> WorldModel:
         cid = self.sim.physics.client
@@ -194,10 +215,7 @@ class WorldControl:
         return model
 
     def delete(self, name: str) -> None:
-        model = self._model(name, "DeleteModel")
-        if model.source == "robot":
-            raise RequestError("DeleteModel: the robot %r cannot be deleted in this simulator"
-                               % name)
+        self._model(name, "DeleteModel")  # refuses an unknown name
         self.models.remove(name)
 
     # --- physics -----------------------------------------------------------------------------

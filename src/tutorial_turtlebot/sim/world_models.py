@@ -80,6 +80,7 @@ class WorldModel:
     joints: List[str] = field(default_factory=list)
     geoms: List[str] = field(default_factory=list)
     reset_hook: Optional[Callable[[], None]] = None   # the robot's own reset
+    remove_hook: Optional[Callable[[], None]] = None  # the robot's own removal
     _pose: Pose = rf.IDENTITY        # the model frame of a model without a movable body
 
     def __post_init__(self):
@@ -169,6 +170,10 @@ class WorldModel:
 
     def remove(self) -> None:
         """Take the model's bodies out of the physics."""
+        if self.remove_hook is not None:
+            self.remove_hook()
+            self.parts = []
+            return
         for part in self.parts:
             pybullet.removeBody(part.body, physicsClientId=self.client)
         self.parts = []
@@ -273,7 +278,8 @@ def models_of_world(world: World, bodies: Dict[str, int], cid: int,
 
 def model_of_urdf_body(name: str, body: int, cid: int, source: str,
                        reset_hook: Optional[Callable[[], None]] = None,
-                       spawn_pose: Optional[Pose] = None) -> WorldModel:
+                       spawn_pose: Optional[Pose] = None,
+                       remove_hook: Optional[Callable[[], None]] = None) -> WorldModel:
     """A WorldModel of a body loaded from a URDF: the model frame is its root link's frame;
     links are the root and every jointed link (fixed links merged, as Gazebo lumps them)."""
     info = pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)
@@ -287,7 +293,7 @@ def model_of_urdf_body(name: str, body: int, cid: int, source: str,
         joints.append(joint[1].decode())
     part = BodyPart(body, com_in_root, movable=True)
     model = WorldModel(name, False, source, [part], links, spawn_pose or rf.IDENTITY, cid,
-                       joints=joints, reset_hook=reset_hook)
+                       joints=joints, reset_hook=reset_hook, remove_hook=remove_hook)
     if spawn_pose is None:
         model.spawn_pose = model.pose()
     return model

@@ -1,0 +1,190 @@
+"""One simulated robot's ROS topics, as its URDF's gazebo_ros plugins would advertise them.
+
+For a SimRobot in namespace N ("" = the /gazebo node's own namespace, as sim.launch's robot;
+"/tb3_0/" for one spawned with robot_namespace tb3_0), topic names come from the plugins and
+resolve in N; frames are the URDF's links prefixed with N's name ("tb3_0/odom",
+"tb3_0/base_footprint", "tb3_0/base_scan"), as robot_state_publisher's tf_prefix does.
+For a TurtleBot3:
+  odom (nav_msgs/Odometry)              30 Hz, odom -> base_footprint (and on /tf)
+  joint_states (sensor_msgs/JointState) 30 Hz, wheel_left_joint, wheel_right_joint
+  scan (sensor_msgs/LaserScan)          5 Hz, base_scan
+  imu (sensor_msgs/Imu)                 200 Hz, imu_link, linear acceleration includes gravity
+  camera/... (waffle, waffle_pi, a burger given a camera): see camera_publisher
+  cmd_vel (geometry_msgs/Twist) in: linear.x (m/s), angular.z (rad/s), kept until the next
+A message type nobody subscribes to is not even computed.
+"""
+import math
+
+import rospy
+from geometry_msgs.msg import TransformStamped, Twist
+from nav_msgs.msg import Odometry
+from rosgraph.names import ns_join
+from sensor_msgs.msg import Imu, JointState, LaserScan
+
+from .camera_publisher import CameraPublisher
+
+# Gazebo diff-drive plugin's pose covariance diagonal (x, y, z, roll, pitch, yaw).
+POSE_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
+
+
+def frame_prefix(namespace: str) -> str:
+    """"/tb3_0/" -> "tb3_0/"; "" -> "" (robot_state_publisher's tf_prefix convention)."""
+    name = namespace.strip("/")
+    return name + "/" if name else ""
+
+
+class RobotTopics:
+    """Publishers, messages and the cmd_vel subscriber of one SimRobot."""
+
+    def __init__(self, robot, make_publisher, tf_broadcaster):
+        """``make_publisher(topic, type, queue_size=1)`` gives a (non-blocking) publisher;
+        ``tf_broadcaster``: the node's one tf2_ros.TransformBroadcaster on /tf."""
+        self.robot = robot
+        self.namespace = robot.namespace
+        self.prefix = frame_prefix(robot.namespace)
+        self.tf = tf_broadcaster
+        self.command = None              # the latest (linear, angular), applied by the loop
+        self.pubs = {}
+        self.publishers = {}
+        drive, laser, imu = robot.drive_plugin, robot.laser_sensor, robot.imu_plugin
+        if drive:
+            self.pubs["odom"] = make_publisher(self.topic(drive.odometry_topic), Odometry)
+            self.publishers["odom"] = self._publish_odom
+            if drive.publish_wheel_joint_state:
+                self.pubs["joint_states"] = make_publisher(self.topic("joint_states"), JointState)
+                self.publishers["joint_states"] = self._publish_joints
+        if laser:
+            self.pubs["scan"] = make_publisher(self.topic(laser.topic), LaserScan)
+            self.publishers["scan"] = self._publish_scan
+        if imu:
+            self.pubs["imu"] = make_publisher(self.topic(imu.topic), Imu)
+            self.publishers["imu"] = self._publish_imu
+        self.camera = None
+        if robot.camera is not None:
+            self.camera = CameraPublisher(robot, make_publisher, self.namespace, self.prefix)
+            self.publishers["camera"] = self.camera.publish
+        self._build_messages()
+        self.subscriber = (rospy.Subscriber(self.topic(drive.command_topic), Twist,
+                                            self._on_cmd_vel, queue_size=1)
+                           if drive else None)
+
+    def topic(self, name: str) -> str:
+        """A plugin's topic name resolved in the robot's namespace ("" = the node's)."""
+        return ns_join(self.namespace, name) if self.namespace else name
+
+    def frame(self, name: str) -> str:
+        return self.prefix + name.lstrip("/")
+
+    def close(self) -> None:
+        """Unadvertise every topic of the robot (delete_model)."""
+        if self.subscriber is not None:
+            self.subscriber.unregister()
+        pubs = list(self.pubs.values())
+        if self.camera is not None:
+            camera = self.camera
+            pubs += (camera.image_pubs + camera.info_pubs + camera.jpeg_pubs + camera.depth_pubs
+                     + camera.points_pubs)
+        for pub in pubs:
+            pub.unregister()
+
+    # --- messages --------------------------------------------------------------------------------
+
+    def _build_messages(self) -> None:
+        """Messages are filled in place each time: only the changing fields are written."""
+        robot = self.robot
+        drive = robot.drive_plugin
+        if drive:
+            self.odom_msg = Odometry()
+            self.odom_msg.header.frame_id = self.frame(drive.odometry_frame)
+            self.odom_msg.child_frame_id = self.frame(drive.robot_base_frame)
+            for i, value in enumerate(POSE_COVARIANCE_DIAGONAL):
+                self.odom_msg.pose.covariance[i * 7] = value
+            self.tf_msg = TransformStamped()
+            self.tf_msg.header.frame_id = self.odom_msg.header.frame_id
+            self.tf_msg.child_frame_id = self.odom_msg.child_frame_id
+            self.joint_msg = JointState(name=[drive.left_joint, drive.right_joint])
+        laser = robot.laser
+        if laser:
+            self.scan_msg = LaserScan(angle_min=laser.angle_min, angle_max=laser.angle_max,
+                                      angle_increment=laser.angle_increment,
+                                      time_increment=0.0, scan_time=0.0,
+                                      range_min=laser.range_min, range_max=laser.range_max,
+                                      intensities=[0.0] * laser.samples)
+            self.scan_msg.header.frame_id = self.frame(robot.laser_sensor.frame)
+        if robot.imu_plugin:
+            self.imu_msg = Imu()
+            self.imu_msg.header.frame_id = self.frame(robot.imu_plugin.frame)
+
+    def _publish_odom(self, stamp) -> None:
+        wants_odom = self.pubs["odom"].get_num_connections() > 0
+        wants_tf = (self.robot.drive_plugin.publish_tf
+                    and self.tf.pub_tf.get_num_connections() > 0)
+        if not (wants_odom or wants_tf):
+            return
+        state = self.robot.odom()
+        if wants_odom:
+            msg = self.odom_msg
+            msg.header.stamp = stamp
+            p, q = msg.pose.pose.position, msg.pose.pose.orientation
+            p.x, p.y, p.z = state.position
+            q.x, q.y, q.z, q.w = state.orientation
+            lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
+            lin.x, lin.y, lin.z = state.linear
+            ang.x, ang.y, ang.z = state.angular
+            self.pubs["odom"].publish(msg)
+        if wants_tf:
+            t = self.tf_msg
+            t.header.stamp = stamp
+            tr, rot = t.transform.translation, t.transform.rotation
+            tr.x, tr.y, tr.z = state.position
+            rot.x, rot.y, rot.z, rot.w = state.orientation
+            self.tf.sendTransform(t)
+
+    def _publish_joints(self, stamp) -> None:
+        if self.pubs["joint_states"].get_num_connections() == 0:
+            return
+        positions, velocities = self.robot.joint_states()
+        msg = self.joint_msg
+        msg.header.stamp = stamp
+        msg.position, msg.velocity = list(positions), list(velocities)
+        self.pubs["joint_states"].publish(msg)
+
+    def _publish_scan(self, stamp) -> None:
+        if self.pubs["scan"].get_num_connections() == 0:
+            return
+        msg = self.scan_msg
+        msg.header.stamp = stamp
+        msg.ranges = self.robot.scan().tolist()
+        self.pubs["scan"].publish(msg)
+
+    def _publish_imu(self, stamp) -> None:
+        if self.pubs["imu"].get_num_connections() == 0:
+            return
+        state = self.robot.imu()
+        msg = self.imu_msg
+        msg.header.stamp = stamp
+        q, w, a = msg.orientation, msg.angular_velocity, msg.linear_acceleration
+        q.x, q.y, q.z, q.w = state.orientation
+        w.x, w.y, w.z = state.angular_velocity
+        a.x, a.y, a.z = state.linear_acceleration
+        self.pubs["imu"].publish(msg)
+
+    # --- input -----------------------------------------------------------------------------------
+
+    def _on_cmd_vel(self, msg: Twist) -> None:
+        linear, angular = msg.linear.x, msg.angular.z
+        if not (math.isfinite(linear) and math.isfinite(angular)):
+            rospy.logwarn_throttle(5.0, "%s ignored: NaN or infinite field (linear.x=%r, "
+                                   "angular.z=%r)" % (self.subscriber.name, linear, angular))
+            return
+        self.command = (linear, angular)
+
+    def apply_command(self) -> None:
+        """Hand the latest cmd_vel (if a new one came) to the robot; called by the loop."""
+        command, self.command = self.command, None
+        if command is None:
+            return
+        problems = self.robot.command(*command)
+        if problems:
+            rospy.logwarn_throttle(5.0, "cmd_vel beyond %s's limits: %s"
+                                   % (self.robot.name, "; ".join(problems)))
