@@ -123,8 +123,8 @@ class SpawnModelTest(unittest.TestCase):
         self.assertAlmostEqual(rel.pose.position.x, 0.5, delta=1e-3)
         self.assertAlmostEqual(rel.pose.position.y, 0.0, delta=1e-3)
         # an unknown frame: the service's answer, exit 1
-        status, out, err = run("-sdf", "-stdin", "-model", "box", "-x", "1", "-reference_frame", "nope",
-                               stdin=BOX)
+        status, out, err = run("-sdf", "-stdin", "-model", "box", "-x", "1",
+                               "-reference_frame", "nope", stdin=BOX)
         self.assertEqual(status, 1, out + err)
         self.assertIn("reference_frame", err)
 

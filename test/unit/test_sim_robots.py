@@ -1,6 +1,7 @@
 """Several robots in one Simulation (no ROS): each made from its URDF's plugins, in its own
 namespace, seeing and bumping into the others; spawn refusals leave the running ones alone."""
 import math
+import os
 
 import numpy as np
 import pytest
@@ -235,3 +236,41 @@ def test_the_urdf_makes_the_robot(tmp_path):
     finally:
         sim.close()
     assert read_urdf(path).plugins.laser.laser.samples == 24
+
+
+def test_a_camera_added_to_the_burger_is_simulated(tmp_path):
+    """The README's snippet (test/unit/data/burger_camera.xml) pasted into the Burger's URDF:
+    the Burger gets a 640x480 camera at 30 Hz, rendering from camera_link along its +x."""
+    with open(os.path.join(os.path.dirname(__file__), "data", "burger_camera.xml")) as f:
+        snippet = f.read()
+    path = tmp_path / "burger_camera.urdf"
+    path.write_text(urdf_text("burger").replace("</robot>", snippet + "</robot>"))
+    sim = Simulation(SimConfig(model="burger", world="turtlebot3_world", urdf=str(path)))
+    try:
+        spec = sim.camera_spec
+        assert (spec.width, spec.height, spec.rate) == (640, 480, 30.0)
+        assert sim.robot.camera_sensor.frame == "camera_optical_frame"
+        rgb, _ = sim.camera_image()
+        assert rgb.shape == (480, 640, 3) and rgb.std() > 5   # the arena, not a blank image
+    finally:
+        sim.close()
+
+
+def test_a_camera_looks_along_its_links_x_axis():
+    """Gazebo renders a camera along +x of its <gazebo reference> link (camera_rgb_frame on a
+    Waffle Pi): the image equals one rendered from the URDF's optical frame, which the
+    TurtleBot3 URDF puts on that axis (rpy -1.57 0 -1.57: within 1 mrad of it)."""
+    from tutorial_turtlebot.sim.camera import CameraRenderer
+    sim = Simulation(SimConfig(model="waffle_pi", world="turtlebot3_world"))
+    try:
+        assert sim.robot.camera_sensor.link == "camera_rgb_frame"
+        rgb, _ = sim.camera_image()
+        position, rotation = sim.robot.body.frame_pose("camera_rgb_optical_frame")
+        reference, _ = CameraRenderer(sim.physics.client, sim.camera_spec,
+                                      use_egl=sim.physics.egl).render(position, rotation)
+        assert rgb.std() > 5
+        assert np.mean(np.abs(rgb.astype(int) - reference.astype(int))) < 2.0
+        flipped = reference[::-1]
+        assert np.mean(np.abs(rgb.astype(int) - flipped.astype(int))) > 5.0
+    finally:
+        sim.close()

@@ -9,8 +9,11 @@ For a TurtleBot3:
   joint_states (sensor_msgs/JointState) 30 Hz, wheel_left_joint, wheel_right_joint
   scan (sensor_msgs/LaserScan)          5 Hz, base_scan
   imu (sensor_msgs/Imu)                 200 Hz, imu_link, linear acceleration includes gravity
+  imu_service (std_srvs/Empty)          does nothing, as gazebo_ros_imu's
   camera/... (waffle, waffle_pi, a burger given a camera): see camera_publisher
   cmd_vel (geometry_msgs/Twist) in: linear.x (m/s), angular.z (rad/s), kept until the next
+As the plugins: the diff drive's publishTf false publishes no odometry at all, publishOdomTF
+false only no TF; a plugin's own <robotNamespace> replaces the robot's for its topics.
 A message type nobody subscribes to is not even computed.
 """
 import math
@@ -20,6 +23,7 @@ from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rosgraph.names import ns_join
 from sensor_msgs.msg import Imu, JointState, LaserScan
+from std_srvs.srv import Empty, EmptyResponse
 
 from .camera_publisher import CameraPublisher
 
@@ -45,32 +49,44 @@ class RobotTopics:
         self.tf = tf_broadcaster
         self.command = None              # the latest (linear, angular), applied by the loop
         self.pubs = {}
-        self.publishers = {}
+        self.publishers = {"odom": self._nothing, "joint_states": self._nothing}
+        self.services = []
         drive, laser, imu = robot.drive_plugin, robot.laser_sensor, robot.imu_plugin
         if drive:
-            self.pubs["odom"] = make_publisher(self.topic(drive.odometry_topic), Odometry)
-            self.publishers["odom"] = self._publish_odom
+            if drive.publish_tf:
+                self.pubs["odom"] = make_publisher(self.topic(drive.odometry_topic, drive),
+                                                   Odometry)
+                self.publishers["odom"] = self._publish_odom
             if drive.publish_wheel_joint_state:
-                self.pubs["joint_states"] = make_publisher(self.topic("joint_states"), JointState)
+                self.pubs["joint_states"] = make_publisher(self.topic("joint_states", drive),
+                                                           JointState)
                 self.publishers["joint_states"] = self._publish_joints
         if laser:
-            self.pubs["scan"] = make_publisher(self.topic(laser.topic), LaserScan)
+            self.pubs["scan"] = make_publisher(self.topic(laser.topic, laser), LaserScan)
             self.publishers["scan"] = self._publish_scan
         if imu:
-            self.pubs["imu"] = make_publisher(self.topic(imu.topic), Imu)
+            self.pubs["imu"] = make_publisher(self.topic(imu.topic, imu), Imu)
             self.publishers["imu"] = self._publish_imu
+            self.services.append(rospy.Service(self.topic(imu.service_name, imu), Empty,
+                                               lambda _request: EmptyResponse()))
         self.camera = None
         if robot.camera is not None:
             self.camera = CameraPublisher(robot, make_publisher, self.namespace, self.prefix)
             self.publishers["camera"] = self.camera.publish
         self._build_messages()
-        self.subscriber = (rospy.Subscriber(self.topic(drive.command_topic), Twist,
+        self.subscriber = (rospy.Subscriber(self.topic(drive.command_topic, drive), Twist,
                                             self._on_cmd_vel, queue_size=1)
                            if drive else None)
 
-    def topic(self, name: str) -> str:
-        """A plugin's topic name resolved in the robot's namespace ("" = the node's)."""
-        return ns_join(self.namespace, name) if self.namespace else name
+    def topic(self, name: str, plugin) -> str:
+        """A plugin's topic name resolved in its <robotNamespace>, else in the robot's
+        namespace ("" = the node's)."""
+        namespace = plugin.robot_namespace or self.namespace
+        return ns_join(namespace, name) if namespace else name
+
+    @staticmethod
+    def _nothing(_stamp) -> None:
+        """An output the plugin's settings switch off (publishTf, publishWheelJointState)."""
 
     def frame(self, name: str) -> str:
         return self.prefix + name.lstrip("/")
@@ -79,6 +95,8 @@ class RobotTopics:
         """Unadvertise every topic of the robot (delete_model)."""
         if self.subscriber is not None:
             self.subscriber.unregister()
+        for service in self.services:
+            service.shutdown()
         pubs = list(self.pubs.values())
         if self.camera is not None:
             camera = self.camera
@@ -114,10 +132,15 @@ class RobotTopics:
         if robot.imu_plugin:
             self.imu_msg = Imu()
             self.imu_msg.header.frame_id = self.frame(robot.imu_plugin.frame)
+            variance = robot.imu_plugin.gaussian_noise ** 2   # gazebo_ros_imu's covariances
+            for covariance in (self.imu_msg.orientation_covariance,
+                               self.imu_msg.angular_velocity_covariance,
+                               self.imu_msg.linear_acceleration_covariance):
+                covariance[0] = covariance[4] = covariance[8] = variance
 
     def _publish_odom(self, stamp) -> None:
         wants_odom = self.pubs["odom"].get_num_connections() > 0
-        wants_tf = (self.robot.drive_plugin.publish_tf
+        wants_tf = (self.robot.drive_plugin.publish_odom_tf
                     and self.tf.pub_tf.get_num_connections() > 0)
         if not (wants_odom or wants_tf):
             return

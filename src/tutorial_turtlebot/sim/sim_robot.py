@@ -288,8 +288,13 @@ class SimRobot:
                                         for a, v, v0 in zip(self._imu_accel, lin, last_lin))
             self._imu_velocity = (lin, self.time_ns)
         ax, ay, az = self._imu_accel
-        self._imu_state = ImuState(orn, kinematics.to_body(orn, ang),
-                                   kinematics.to_body(orn, (ax, ay, az + GRAVITY)))
+        rates = kinematics.to_body(orn, ang)
+        accel = kinematics.to_body(orn, (ax, ay, az + GRAVITY))
+        sigma = self.imu_plugin.gaussian_noise if self.imu_plugin else 0.0
+        if sigma > 0:   # gazebo_ros_imu's gaussianNoise on the rates and the acceleration
+            rates = tuple(rates + self._rng.normal(0.0, sigma, 3))
+            accel = tuple(accel + self._rng.normal(0.0, sigma, 3))
+        self._imu_state = ImuState(orn, rates, accel)
         self._imu_state_ns = self.time_ns
 
     def _update_encoders(self) -> None:

@@ -1,4 +1,4 @@
-"""The simulated world and the robots in it, as Gazebo and its ROS plugins present them, without ROS.
+"""The simulated world and its robots, as Gazebo and its ROS plugins present them, without ROS.
 
 ``Simulation`` owns the world's physics, the sim clock (integer ns), the world's models and the
 robots (``SimRobot``, each made from its URDF's <gazebo> plugins), and answers "what is due now".
@@ -25,7 +25,6 @@ from . import gui_window
 from .world_sdf import load_world, resolve_world
 
 __all__ = ["SimConfig", "Simulation", "OdomState", "ImuState"]
-CONTROL_RATE = 30.0  # Hz: the TurtleBot3 diff-drive plugin's updateRate (ramp, odom, joint states)
 # A robot's outputs in what step() returns: (the SimRobot, "odom"); the world's: (None, "clock").
 Due = Tuple[Optional[SimRobot], str]
 
