@@ -17,6 +17,14 @@ Measured (Burger in turtlebot3_world unless said):
                     as fast as possible); spawn and delete round trips; stage 1 with a
                     turtlebot3_dqn-style client: environment steps per wall second
   scaling           real_time_factor 0, 1 / 4 / 8 subscribers to /scan: achieved factor
+  multi             three Burgers in turtlebot3_house (multi_turtlebot3.launch) with every
+                    sensor of each and /tf subscribed: sim CPU at real time, factor as fast as
+                    possible; 1, 2, 4, 8 Burgers spawned into the empty world (the sim node
+                    alone, bench/multi_robot.py): the same two figures, and the same robots
+                    stepped without ROS (physics alone; physics and every sensor computed)
+
+``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, jitter, fast, world,
+subscribers, camera, render, multi); the default is all of them.
 """
 import argparse
 import os
@@ -37,6 +45,8 @@ TARGETS = {
     "rt_mem": "<= 200 MB",
     "fast_all": ">= 20x",
     "rt_cpu_states": "<= 12 %",
+    "multi_rt_cpu": "<= 25 %",
+    "multi_fast": ">= 8x",
 }
 
 
@@ -59,17 +69,18 @@ class SimRun:
         self.procs = []
         self.launch = None
 
-    def start_helper(self, script, *args):
+    def start_helper(self, script, *args, stdin=None):
         proc = subprocess.Popen([sys.executable, os.path.join(HERE, script)] + list(args),
-                                env=self.env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                                text=True, start_new_session=True)
+                                env=self.env, stdin=stdin, stdout=subprocess.PIPE,
+                                stderr=subprocess.DEVNULL, text=True, start_new_session=True)
         self.procs.append(proc)
         return proc
 
     def start(self):
         self.launch = subprocess.Popen(
-            ["roslaunch", "-p", str(self.port), "tutorial_turtlebot", self.launch_file]
-            + self.args,
+            ["roslaunch", "-p", str(self.port)]
+            + ([] if os.path.isabs(self.launch_file) else ["tutorial_turtlebot"])
+            + [self.launch_file] + self.args,
             env=self.env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
             start_new_session=True)
         self.procs.append(self.launch)
@@ -124,12 +135,13 @@ def rss_mb(pid) -> float:
 
 
 def read_report(proc):
-    """Next 'wall sim messages' line of a subscribers.py process (other lines skipped)."""
+    """Next 'wall sim messages topics_heard' line of a subscribers.py process, as
+    (wall, sim, messages, topics_heard) (other lines skipped)."""
     for line in proc.stdout:
         fields = line.split()
-        if len(fields) == 3:
+        if len(fields) == 4:
             try:
-                return float(fields[0]), float(fields[1]), int(fields[2])
+                return float(fields[0]), float(fields[1]), int(fields[2]), int(fields[3])
             except ValueError:
                 continue
     raise RuntimeError("subscriber process ended")
@@ -167,11 +179,11 @@ def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger"):
         end_warmup = time.time() + warmup
         while time.time() < end_warmup:
             read_report(subs)
-        wall0, sim0, count0 = read_report(subs)
+        wall0, sim0, count0, _ = read_report(subs)
         cpu0 = cpu_seconds(pid)
         samples = int(seconds)
         for _ in range(samples):
-            wall1, sim1, count1 = read_report(subs)
+            wall1, sim1, count1, _ = read_report(subs)
         cpu1 = cpu_seconds(pid)
         mem = rss_mb(pid)
         return ((sim1 - sim0) / (wall1 - wall0), 100.0 * (cpu1 - cpu0) / (wall1 - wall0), mem,
@@ -256,17 +268,179 @@ def physics_bound(seconds=20.0) -> float:
         sim.close()
 
 
+ROBOT_SENSORS = ("scan", "odom", "imu", "joint_states")
+HOUSE_ROBOTS = ("tb3_0", "tb3_1", "tb3_2")   # multi_turtlebot3.launch's namespaces
+HOUSE_POSES = ((-7.0, -1.0, 1.57), (7.0, -1.0, 1.57), (0.5, 3.0, 0.0))  # and its poses
+ROBOT_COUNTS = (1, 2, 4, 8)
+
+
+def robot_topics(namespaces):
+    """Every sensor topic of each robot, and the shared /tf."""
+    return ["/%s/%s" % (ns, topic) for ns in namespaces for topic in ROBOT_SENSORS] + ["/tf"]
+
+
+def window(subs, pid, seconds, warmup):
+    """(achieved factor, sim CPU % of one core, messages per sim second) over ``seconds``
+    reports of ``subs`` after ``warmup`` wall seconds."""
+    end_warmup = time.time() + warmup
+    while time.time() < end_warmup:
+        read_report(subs)
+    wall0, sim0, count0, _ = read_report(subs)
+    cpu0 = cpu_seconds(pid)
+    for _ in range(int(seconds)):
+        wall1, sim1, count1, _ = read_report(subs)
+    cpu1 = cpu_seconds(pid)
+    return ((sim1 - sim0) / (wall1 - wall0), 100.0 * (cpu1 - cpu0) / (wall1 - wall0),
+            (count1 - count0) / max(sim1 - sim0, 1e-9))
+
+
+def wait_heard(subs, topics, timeout=60.0):
+    """Until every one of ``topics`` has delivered a message (the robots are all up)."""
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        if read_report(subs)[3] >= len(topics):
+            return
+    raise RuntimeError("not every topic of %s delivered within %g s" % (topics, timeout))
+
+
+def tell(helper, command):
+    """Send ``command`` to bench/multi_robot.py and read up to its answer (rospy may say
+    other things first); RuntimeError with its line if it reports an error or ends."""
+    helper.stdin.write(command + "\n")
+    helper.stdin.flush()
+    word = command.split()[0]
+    word = "spawned" if word == "spawn" else word
+    for line in helper.stdout:
+        if line.startswith(word):
+            return
+        if line.startswith("error"):
+            raise RuntimeError("multi_robot.py: %s" % line.strip())
+    raise RuntimeError("multi_robot.py ended before answering %r" % command)
+
+
+def measure_both(run, helper, topics, seconds, warmup):
+    """With the sim of ``run`` running at real time: subscribe ``topics`` from a new process,
+    measure; switch to as fast as possible, measure; back to real time. ((factor, CPU %,
+    messages per sim s) at real time, the same as fast as possible)."""
+    subs = run.start_helper("subscribers.py", *topics)
+    try:
+        pid = run.sim_pid()
+        wait_heard(subs, topics)
+        real_time = window(subs, pid, seconds, warmup)
+        tell(helper, "fast")
+        fast = window(subs, pid, seconds, warmup)
+        tell(helper, "realtime")
+        return real_time, fast
+    finally:
+        os.killpg(subs.pid, signal.SIGKILL)  # it only counts: nothing to shut down cleanly
+        subs.wait()
+        run.procs.remove(subs)
+
+
+def measure_house(seconds=4.0, warmup=1.0):
+    """multi_turtlebot3.launch (three Burgers in the house, each with robot_state_publisher),
+    every sensor of all three and /tf subscribed: ((factor, sim CPU %, messages per sim s) at
+    real time, the same as fast as possible). The pace is switched as Gazebo's is, by
+    set_physics_properties (max_update_rate 0), which sets what real_time_factor:=0 sets."""
+    run = SimRun(["real_time_factor:=1"], launch="multi_turtlebot3.launch")
+    try:
+        run.start()
+        helper = run.start_helper("multi_robot.py", stdin=subprocess.PIPE)
+        return measure_both(run, helper, robot_topics(HOUSE_ROBOTS), seconds, warmup)
+    finally:
+        run.stop()
+
+
+EMPTY_SIM_LAUNCH = """<launch>
+  <arg name="model" default="burger"/>
+  <arg name="status_period" default="0"/>
+  <arg name="real_time_factor" default="1.0"/>
+  <param name="/use_sim_time" value="true"/>
+  <node name="gazebo" pkg="tutorial_turtlebot" type="sim" required="true">
+    <param name="world" value="empty"/>
+    <param name="spawn_robot" value="false"/>
+    <param name="real_time_factor" value="$(arg real_time_factor)"/>
+    <param name="status_period" value="$(arg status_period)"/>
+  </node>
+</launch>
+"""
+
+
+def measure_scaling(seconds=4.0, warmup=1.0):
+    """The sim node alone in the empty world; Burgers spawned by bench/multi_robot.py, 1, then
+    up to 2, 4, 8; at each count every sensor of each and /tf subscribed from a new process:
+    {count: ((factor, CPU %, messages per sim s) at real time, the same as fast as possible
+    (set_physics_properties, max_update_rate 0))}."""
+    import tempfile
+    with tempfile.NamedTemporaryFile("w", suffix=".launch", prefix="bench_empty_sim_",
+                                     delete=False) as f:
+        f.write(EMPTY_SIM_LAUNCH)
+    run = SimRun(["real_time_factor:=1"], launch=f.name)
+    results = {}
+    try:
+        run.start()
+        helper = run.start_helper("multi_robot.py", stdin=subprocess.PIPE)
+        for count in ROBOT_COUNTS:
+            tell(helper, "spawn %d" % count)
+            results[count] = measure_both(run, helper,
+                                          robot_topics(["tb3_%d" % i for i in range(count)]),
+                                          seconds, warmup)
+        return results
+    finally:
+        run.stop()
+        os.unlink(f.name)
+
+
+def robots_bound(count, world="empty", poses=None, wall_seconds=1.5):
+    """(physics alone, physics and sensors): real-time factors of ``count`` Burgers in
+    ``world`` at ``poses`` ((x, y, yaw) each; default: bench/multi_robot.py's grid) stepped by
+    Simulation.step with no ROS; for the second, every output that falls due is also computed
+    (scan, odom, imu, joint_states), as the node computes it for a subscriber."""
+    import math
+    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+    from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
+    from multi_robot import grid_pose
+    if poses is None:
+        poses = [(p.x, p.y, 0.0) for p in (grid_pose(i).position for i in range(count))]
+    sim = Simulation(SimConfig(world=world, spawn_robot=False))
+    try:
+        description = read_urdf(urdf_path("burger"))
+        for i, (x, y, yaw) in enumerate(poses):
+            sim.add_robot("tb3_%d" % i, "tb3_%d" % i, description,
+                          ((x, y, 0.0), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))))
+        for _ in range(400):  # 1 s of sim time: the robots settle on their wheels
+            sim.step()
+        factors = []
+        for sensors in (False, True):
+            start_sim, t0 = sim.time, time.perf_counter()
+            while time.perf_counter() - t0 < wall_seconds:
+                for _ in range(100):
+                    due = sim.step()
+                    if sensors:
+                        for robot, name in due:
+                            if robot is not None:
+                                getattr(robot, name)()
+            factors.append((sim.time - start_sim) / (time.perf_counter() - t0))
+        return tuple(factors)
+    finally:
+        sim.close()
+
+
 def render_times(frames=10):
     """Median ms per rendered frame at each RESOLUTIONS size, with EGL (where it loads) and
     with TinyRenderer, from the Waffle Pi's camera pose at the turtlebot3_world spawn."""
     from tutorial_turtlebot.sim.camera import CameraRenderer
-    from tutorial_turtlebot.sim.robot_models import CameraSpec
-    from tutorial_turtlebot.sim.simulation import CAMERA_FRAME, SimConfig, Simulation
+    from tutorial_turtlebot.sim.robot_plugins import CameraSpec
+    from tutorial_turtlebot.sim.sim_robot import LINK_TO_OPTICAL
+    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
     results = {}
+    pose = None  # the camera's optical frame in the world: (position, 3x3 rotation)
     for camera in (True, False):  # True: the sim loads EGL for its camera; False: none
         sim = Simulation(SimConfig(model="waffle_pi", camera=camera))
         try:
-            pose = sim.physics.frame_pose(CAMERA_FRAME)
+            if pose is None:  # the same spawn in both runs; only the first has the camera
+                in_world = sim.robot._in_world(sim.robot._camera_pose)
+                pose = (in_world[:3, 3], in_world[:3, :3] @ LINK_TO_OPTICAL)
             for width, height, hfov in RESOLUTIONS:
                 renderer = CameraRenderer(sim.physics.client, CameraSpec(width, height, hfov, 30.0),
                                           use_egl=sim.physics.egl)
@@ -290,69 +464,140 @@ def median(values):
     return statistics.median(values)
 
 
+GROUPS = ("startup", "realtime", "jitter", "fast", "world", "subscribers", "camera", "render",
+          "multi")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=3, help="runs per figure (median)")
+    parser.add_argument("--only", default=",".join(GROUPS),
+                        help="comma-separated groups of rows to run (default: all): "
+                        + ", ".join(GROUPS))
     args = parser.parse_args()
+    only = [g.strip() for g in args.only.split(",") if g.strip()]
+    unknown = [g for g in only if g not in GROUPS]
+    if unknown or not only:
+        parser.error("--only: unknown group %r (groups: %s)"
+                     % (",".join(unknown), ", ".join(GROUPS)))
+    if args.runs < 1:
+        parser.error("--runs must be at least 1")
     rows = []
+    started = time.time()
 
     def row(name, value, unit, target=""):
         rows.append((name, value, unit, target))
         print("  %-58s %10s %-8s %s" % (name, value, unit, target), flush=True)
 
-    print("tutorial_turtlebot benchmark: %d runs each, median; %s, %d cores"
-          % (args.runs, os.uname().nodename, os.cpu_count()), flush=True)
-    row("start-up: roslaunch (with roscore) -> first /scan",
-        "%.2f" % median([measure_startup() for _ in range(args.runs)]), "s", TARGETS["startup"])
-    rt = [measure_running(1.0, ALL_SENSORS) for _ in range(args.runs)]
-    row("real time, every sensor subscribed: achieved factor",
-        "%.2f" % median([r[0] for r in rt]), "x")
-    row("real time, every sensor subscribed: sim CPU",
-        "%.1f" % median([r[1] for r in rt]), "% core", TARGETS["rt_cpu"])
-    row("real time, every sensor subscribed: sim memory (RSS)",
-        "%.0f" % median([r[2] for r in rt]), "MB", TARGETS["rt_mem"])
-    jitter = [measure_jitter() for _ in range(args.runs)]
-    for topic in JITTER_TOPICS:
-        row("real time, %s arrival-interval error p50 / p99 / max" % topic,
-            " / ".join("%.1f" % median([j[topic][k] for j in jitter if topic in j])
-                       for k in range(3)), "ms", "each <= 5 ms of its moment")
-    fast_all = median([measure_running(0, ALL_SENSORS)[0] for _ in range(args.runs)])
-    row("as fast as possible, every sensor subscribed", "%.1f" % fast_all, "x",
-        TARGETS["fast_all"])
-    with_states = ALL_SENSORS + ["/gazebo/model_states"]
-    rt_states = [measure_running(1.0, with_states) for _ in range(args.runs)]
-    row("real time, every sensor and /gazebo/model_states subscribed: sim CPU",
-        "%.1f" % median([r[1] for r in rt_states]), "% core", TARGETS["rt_cpu_states"])
-    row("as fast as possible, every sensor and /gazebo/model_states subscribed",
-        "%.1f" % median([measure_running(0, with_states)[0] for _ in range(args.runs)]), "x",
-        TARGETS["fast_all"])
-    calls = [measure_world_calls() for _ in range(args.runs)]
-    row("spawn_sdf_model / delete_model round trip (median of 20)",
-        "%.0f / %.0f" % (median([c[0] for c in calls]), median([c[1] for c in calls])), "ms",
-        "each < 50 ms")
-    row("stage 1, DQN-style client stepping once per scan (24 samples, max speed)",
-        "%.1f" % median([measure_stage_client() for _ in range(args.runs)]), "steps/s")
-    fast_odom = median([measure_running(0, ["/odom"])[0] for _ in range(args.runs)])
-    row("as fast as possible, only /odom subscribed", "%.1f" % fast_odom, "x")
-    bound = median([physics_bound() for _ in range(args.runs)])
-    row("physics bound: pybullet alone, no ROS, no sensors", "%.1f" % bound, "x")
-    row("  fast (every sensor) / physics bound", "%.2f" % (fast_all / bound), "")
-    row("  fast (only /odom) / physics bound", "%.2f" % (fast_odom / bound), "")
-    for n in (1, 4, 8):
-        row("as fast as possible, %d subscriber(s) to /scan" % n,
-            "%.1f" % median([measure_running(0, ["/scan:%d" % n])[0]
-                             for _ in range(args.runs)]), "x")
-    for model, target in (("waffle_pi", ">= 27/s at >= 0.9x"), ("waffle", "")):
-        cam = [measure_running(1.0, ["/camera/rgb/image_raw"], model=model)
-               for _ in range(args.runs)]
-        row("%s camera subscribed, real time: images per sim second" % model,
-            "%.1f" % median([r[3] for r in cam]), "/s", target)
-        row("%s camera subscribed, real time: achieved factor" % model,
-            "%.2f" % median([r[0] for r in cam]), "x")
-        row("%s camera subscribed, real time: sim CPU" % model,
-            "%.0f" % median([r[1] for r in cam]), "% core")
-    for (renderer, width, height), ms in sorted(render_times().items()):
-        row("render %dx%d, %s" % (width, height, renderer), "%.1f" % ms, "ms")
+    print("tutorial_turtlebot benchmark: %d runs each, median; %s, %d cores, load average %s"
+          % (args.runs, os.uname().nodename, os.cpu_count(),
+             " ".join("%.2f" % v for v in os.getloadavg())), flush=True)
+    if "startup" in only:
+        row("start-up: roslaunch (with roscore) -> first /scan",
+            "%.2f" % median([measure_startup() for _ in range(args.runs)]), "s",
+            TARGETS["startup"])
+    if "realtime" in only:
+        rt = [measure_running(1.0, ALL_SENSORS) for _ in range(args.runs)]
+        row("real time, every sensor subscribed: achieved factor",
+            "%.2f" % median([r[0] for r in rt]), "x")
+        row("real time, every sensor subscribed: sim CPU",
+            "%.1f" % median([r[1] for r in rt]), "% core", TARGETS["rt_cpu"])
+        row("real time, every sensor subscribed: sim memory (RSS)",
+            "%.0f" % median([r[2] for r in rt]), "MB", TARGETS["rt_mem"])
+    if "jitter" in only:
+        jitter = [measure_jitter() for _ in range(args.runs)]
+        for topic in JITTER_TOPICS:
+            row("real time, %s arrival-interval error p50 / p99 / max" % topic,
+                " / ".join("%.1f" % median([j[topic][k] for j in jitter if topic in j])
+                           for k in range(3)), "ms", "each <= 5 ms of its moment")
+    if "fast" in only:
+        fast_all = median([measure_running(0, ALL_SENSORS)[0] for _ in range(args.runs)])
+        row("as fast as possible, every sensor subscribed", "%.1f" % fast_all, "x",
+            TARGETS["fast_all"])
+    if "world" in only:
+        with_states = ALL_SENSORS + ["/gazebo/model_states"]
+        rt_states = [measure_running(1.0, with_states) for _ in range(args.runs)]
+        row("real time, every sensor and /gazebo/model_states subscribed: sim CPU",
+            "%.1f" % median([r[1] for r in rt_states]), "% core", TARGETS["rt_cpu_states"])
+        row("as fast as possible, every sensor and /gazebo/model_states subscribed",
+            "%.1f" % median([measure_running(0, with_states)[0] for _ in range(args.runs)]),
+            "x", TARGETS["fast_all"])
+        calls = [measure_world_calls() for _ in range(args.runs)]
+        row("spawn_sdf_model / delete_model round trip (median of 20)",
+            "%.0f / %.0f" % (median([c[0] for c in calls]), median([c[1] for c in calls])),
+            "ms", "each < 50 ms")
+        row("stage 1, DQN-style client stepping once per scan (24 samples, max speed)",
+            "%.1f" % median([measure_stage_client() for _ in range(args.runs)]), "steps/s")
+    if "fast" in only:
+        fast_odom = median([measure_running(0, ["/odom"])[0] for _ in range(args.runs)])
+        row("as fast as possible, only /odom subscribed", "%.1f" % fast_odom, "x")
+        bound = median([physics_bound() for _ in range(args.runs)])
+        row("physics bound: pybullet alone, no ROS, no sensors", "%.1f" % bound, "x")
+        row("  fast (every sensor) / physics bound", "%.2f" % (fast_all / bound), "")
+        row("  fast (only /odom) / physics bound", "%.2f" % (fast_odom / bound), "")
+    if "subscribers" in only:
+        for n in (1, 4, 8):
+            row("as fast as possible, %d subscriber(s) to /scan" % n,
+                "%.1f" % median([measure_running(0, ["/scan:%d" % n])[0]
+                                 for _ in range(args.runs)]), "x")
+    if "camera" in only:
+        for model, target in (("waffle_pi", ">= 27/s at >= 0.9x"), ("waffle", "")):
+            cam = [measure_running(1.0, ["/camera/rgb/image_raw"], model=model)
+                   for _ in range(args.runs)]
+            row("%s camera subscribed, real time: images per sim second" % model,
+                "%.1f" % median([r[3] for r in cam]), "/s", target)
+            row("%s camera subscribed, real time: achieved factor" % model,
+                "%.2f" % median([r[0] for r in cam]), "x")
+            row("%s camera subscribed, real time: sim CPU" % model,
+                "%.0f" % median([r[1] for r in cam]), "% core")
+    if "render" in only:
+        for (renderer, width, height), ms in sorted(render_times().items()):
+            row("render %dx%d, %s" % (width, height, renderer), "%.1f" % ms, "ms")
+    if "multi" in only:
+        multi_rows(args.runs, row)
+    print("(%.0f s; load average now %s)" % (time.time() - started,
+                                             " ".join("%.2f" % v for v in os.getloadavg())),
+          flush=True)
+
+
+def multi_rows(runs, row):
+    """Issue 11's rows: three robots in the house; how the cost grows with 1, 2, 4, 8."""
+    def bound_rows(label, bounds, fast_factor):
+        bare, with_sensors = (median([b[k] for b in bounds]) for k in (0, 1))
+        row("  %s without ROS: physics alone / physics and sensors" % label,
+            "%.0f / %.0f" % (bare, with_sensors), "x")
+        row("  as fast as possible / (physics and sensors, no ROS)",
+            "%.2f" % (fast_factor / with_sensors), "")
+
+    house = [measure_house() for _ in range(runs)]
+    name = "3 Burgers in the house (multi_turtlebot3.launch), all sensors subscribed"
+    row("%s, real time: sim CPU" % name, "%.1f" % median([r[0][1] for r in house]),
+        "% core", TARGETS["multi_rt_cpu"])
+    row("  the same: achieved factor", "%.2f" % median([r[0][0] for r in house]), "x")
+    row("  the same: messages per sim second (all subscriptions)",
+        "%.0f" % median([r[0][2] for r in house]), "/s")
+    fast_factor = median([r[1][0] for r in house])
+    row("%s, as fast as possible" % name, "%.1f" % fast_factor, "x", TARGETS["multi_fast"])
+    row("  the same: sim CPU", "%.0f" % median([r[1][1] for r in house]), "% core")
+    row("  the same: sim CPU time per sim second (1000 / it: the factor on a core of its own)",
+        "%.0f" % median([10 * r[1][1] / r[1][0] for r in house]), "ms")
+    bound_rows("the same 3", [robots_bound(3, "turtlebot3_house", HOUSE_POSES)
+                              for _ in range(runs)], fast_factor)
+    scaling = [measure_scaling() for _ in range(runs)]
+    for count in ROBOT_COUNTS:
+        results = [s[count] for s in scaling]
+        label = "%d Burger%s" % (count, "" if count == 1 else "s")
+        row("%s in the empty world (sim node alone), all sensors subscribed, real time: sim "
+            "CPU" % label, "%.1f" % median([r[0][1] for r in results]), "% core")
+        row("  the same: achieved factor at real time",
+            "%.2f" % median([r[0][0] for r in results]), "x")
+        fast_factor = median([r[1][0] for r in results])
+        row("  the same, as fast as possible", "%.1f" % fast_factor, "x")
+        row("  the same: sim CPU as fast as possible",
+            "%.0f" % median([r[1][1] for r in results]), "% core")
+        row("  the same: sim CPU time per sim second (as fast as possible)",
+            "%.0f" % median([10 * r[1][1] / r[1][0] for r in results]), "ms")
+        bound_rows(label, [robots_bound(count) for _ in range(runs)], fast_factor)
 
 
 if __name__ == "__main__":
