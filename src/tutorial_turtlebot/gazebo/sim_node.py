@@ -20,8 +20,8 @@ Parameters (private):
   ~world (turtlebot3_world)   a name from worlds/ or a path to an SDF file
   ~x_pos, ~y_pos, ~yaw        spawn of base_footprint (m, m, rad); empty = the world's spawn
   ~z_pos (0.0)                m
-  ~camera (model's)           simulate the camera: waffle, waffle_pi by default; true on a
-                              burger gives the AutoRace burger's pitched 320x240 camera
+  ~camera (empty)             empty: the camera the URDF declares (waffle, waffle_pi); false:
+                              none; true on a burger: the AutoRace burger's URDF and camera
   ~lidar_model (gazebo)       gazebo (as the URDF declares) or lds01 (the real driver: 0.0)
   ~lidar_samples (empty)      rays per scan over the same sweep; empty = the URDF's (360)
   ~robot_name (empty)         the robot's model name; empty = turtlebot3_gazebo's for the world
