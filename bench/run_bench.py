@@ -431,7 +431,6 @@ def render_times(frames=10):
     with TinyRenderer, from the Waffle Pi's camera pose at the turtlebot3_world spawn."""
     from tutorial_turtlebot.sim.camera import CameraRenderer
     from tutorial_turtlebot.sim.robot_plugins import CameraSpec
-    from tutorial_turtlebot.sim.sim_robot import LINK_TO_OPTICAL
     from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
     results = {}
     pose = None  # the camera's optical frame in the world: (position, 3x3 rotation)
@@ -439,8 +438,7 @@ def render_times(frames=10):
         sim = Simulation(SimConfig(model="waffle_pi", camera=camera))
         try:
             if pose is None:  # the same spawn in both runs; only the first has the camera
-                in_world = sim.robot._in_world(sim.robot._camera_pose)
-                pose = (in_world[:3, 3], in_world[:3, :3] @ LINK_TO_OPTICAL)
+                pose = sim.robot.camera_pose()
             for width, height, hfov in RESOLUTIONS:
                 renderer = CameraRenderer(sim.physics.client, CameraSpec(width, height, hfov, 30.0),
                                           use_egl=sim.physics.egl)

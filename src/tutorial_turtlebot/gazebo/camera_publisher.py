@@ -46,10 +46,12 @@ class CameraPublisher:
 
         def pubs(msg_type, *topics):
             """One publisher per topic (the plugin's names may equal the real robot's)."""
-            names = [ns_join(base, t) for t in topics]
-            names = [n for i, n in enumerate(names) if n not in advertised and n not in names[:i]]
-            advertised.update(names)
-            return [make_publisher(n, msg_type, queue_size=1) for n in names]
+            out = []
+            for name in (ns_join(base, t) for t in topics):
+                if name not in advertised:
+                    advertised.add(name)
+                    out.append(make_publisher(name, msg_type, queue_size=1))
+            return out
         self.image_pubs = pubs(Image, sensor.image_topic, "image")
         self.info_pubs = pubs(CameraInfo, sensor.info_topic, "camera_info")
         self.jpeg_pubs = (pubs(CompressedImage, sensor.image_topic + "/compressed",

@@ -49,18 +49,16 @@ class RobotTopics:
         self.tf = tf_broadcaster
         self.command = None              # the latest (linear, angular), applied by the loop
         self.pubs = {}
-        self.publishers = {"odom": self._nothing, "joint_states": self._nothing}
+        self.publishers = {}   # what the robot's schedules name (SimRobot.due), by name
         self.services = []
         drive, laser, imu = robot.drive_plugin, robot.laser_sensor, robot.imu_plugin
-        if drive:
-            if drive.publish_tf:
-                self.pubs["odom"] = make_publisher(self.topic(drive.odometry_topic, drive),
-                                                   Odometry)
-                self.publishers["odom"] = self._publish_odom
-            if drive.publish_wheel_joint_state:
-                self.pubs["joint_states"] = make_publisher(self.topic("joint_states", drive),
-                                                           JointState)
-                self.publishers["joint_states"] = self._publish_joints
+        if "odom" in robot.schedules:
+            self.pubs["odom"] = make_publisher(self.topic(drive.odometry_topic, drive), Odometry)
+            self.publishers["odom"] = self._publish_odom
+        if "joint_states" in robot.schedules:
+            self.pubs["joint_states"] = make_publisher(self.topic("joint_states", drive),
+                                                       JointState)
+            self.publishers["joint_states"] = self._publish_joints
         if laser:
             self.pubs["scan"] = make_publisher(self.topic(laser.topic, laser), LaserScan)
             self.publishers["scan"] = self._publish_scan
@@ -83,10 +81,6 @@ class RobotTopics:
         namespace ("" = the node's)."""
         namespace = plugin.robot_namespace or self.namespace
         return ns_join(namespace, name) if namespace else name
-
-    @staticmethod
-    def _nothing(_stamp) -> None:
-        """An output the plugin's settings switch off (publishTf, publishWheelJointState)."""
 
     def frame(self, name: str) -> str:
         return self.prefix + name.lstrip("/")

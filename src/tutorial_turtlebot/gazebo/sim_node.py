@@ -158,7 +158,7 @@ class SimNode:
                 for warning in robot.warnings:
                     rospy.logwarn("%s: %s", name, warning)
                 self.robot_topics[name] = RobotTopics(robot, self._publisher, self.tf)
-        self._topics = list(self.robot_topics.values())
+        self._topics = list(self.robot_topics.values())   # what the loop walks every step
 
     # --- messages --------------------------------------------------------------------------------
 

@@ -232,7 +232,10 @@ class RobotBody:
 
     def frame_pose(self, frame: str) -> Tuple[np.ndarray, np.ndarray]:
         """World (position, 3x3 rotation) of a URDF frame rigidly attached to the chassis."""
+        return self.pose_in_world(self.frame_in_footprint(frame))
+
+    def pose_in_world(self, in_root: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+        """World (position, 3x3 rotation) of a pose given as a 4x4 in the root link."""
         pos, orn = self.footprint_pose()
         rot = np.array(pybullet.getMatrixFromQuaternion(orn)).reshape(3, 3)
-        local = self.frame_in_footprint(frame)
-        return np.array(pos) + rot @ local[:3, 3], rot @ local[:3, :3]
+        return np.array(pos) + rot @ in_root[:3, 3], rot @ in_root[:3, :3]

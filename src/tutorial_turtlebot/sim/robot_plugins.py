@@ -270,17 +270,9 @@ class _PluginReader:
     def _model_plugin(self, elem) -> None:
         name, filename = self._plugin_id(elem)
         if filename == DIFF_DRIVE:
-            drive = self._diff_drive(elem, name)
-            if self.drive is None:
-                self.drive = drive
-            else:
-                self._second(elem, "differential drive", self.drive.name)
+            self._keep_first("drive", self._diff_drive(elem, name), elem, "differential drive")
         elif filename == IMU:
-            imu = self._imu(elem, name)
-            if self.imu is None:
-                self.imu = imu
-            else:
-                self._second(elem, "IMU plugin", self.imu.name)
+            self._keep_first("imu", self._imu(elem, name), elem, "IMU plugin")
         elif filename in SENSOR_PLUGIN.values():
             self._warn("%s is a sensor plugin outside any <sensor>: Gazebo loads it only inside "
                        "a <sensor> in a <gazebo reference=...> block; %s"
@@ -322,17 +314,10 @@ class _PluginReader:
         if ros_plugin is None:
             return  # no ROS plugin: Gazebo publishes nothing of it on ROS; nor do we
         if kind in ("ray", "gpu_ray"):
-            laser = self._laser(elem, ros_plugin, link)
-            if self.laser is None:
-                self.laser = laser
-            else:
-                self._second(elem, "laser", self.laser.name)
+            self._keep_first("laser", self._laser(elem, ros_plugin, link), elem, "laser")
         else:
-            camera = self._camera(elem, ros_plugin, link, depth=(kind == "depth"))
-            if self.camera is None:
-                self.camera = camera
-            else:
-                self._second(elem, "camera", self.camera.name)
+            self._keep_first("camera", self._camera(elem, ros_plugin, link,
+                                                    depth=(kind == "depth")), elem, "camera")
 
     # --- the plugins -------------------------------------------------------------------------
 
@@ -608,6 +593,15 @@ class _PluginReader:
 
     def _sensor_id(self, elem) -> str:
         return "sensor %r (type %s)" % (elem.get("name", ""), elem.get("type", "?"))
+
+    def _keep_first(self, slot: str, plugin, elem, what: str) -> None:
+        """Keep ``plugin`` as the robot's ``slot`` (drive, imu, laser, camera) unless one is
+        there already: only one of each is simulated, a second one is warned about."""
+        first = getattr(self, slot)
+        if first is None:
+            setattr(self, slot, plugin)
+        else:
+            self._second(elem, what, first.name)
 
     def _second(self, elem, what, first) -> None:
         self._warn("%s: a second %s is not simulated here (only one per robot: %r is); %s"

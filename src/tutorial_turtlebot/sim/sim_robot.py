@@ -150,10 +150,10 @@ class SimRobot:
         self.control = RateSchedule(min(drive.update_rate or step_rate, step_rate)
                                     if drive else 1.0)
         self.schedules: Dict[str, RateSchedule] = {}
-        if drive:
+        if drive and drive.publish_tf:     # publishTf false: no odometry at all (Gazebo)
             self.schedules["odom"] = RateSchedule(self.control.rate_hz)
-            if drive.publish_wheel_joint_state:
-                self.schedules["joint_states"] = RateSchedule(self.control.rate_hz)
+        if drive and drive.publish_wheel_joint_state:
+            self.schedules["joint_states"] = RateSchedule(self.control.rate_hz)
         if self.laser:
             self.schedules["scan"] = RateSchedule(min(self.laser.rate or step_rate, step_rate))
             self._rays = ray_directions(self.laser)
@@ -167,7 +167,6 @@ class SimRobot:
             self._camera_pose = _sensor_pose(self.body, self.camera_sensor.link,
                                              self.camera_sensor.pose)
         self._rng = np.random.default_rng(seed)
-        self.time_ns = now_ns
         self.reset_state(now_ns)
 
     def _laser_config(self, sensor: Optional[LaserSensor]) -> Optional[LaserConfig]:
@@ -250,8 +249,8 @@ class SimRobot:
     def scan(self) -> np.ndarray:
         """The ranges of the laser as its LaserConfig publishes them (float32); the rays see
         the world and every other robot, never this one."""
-        pose = self._in_world(self._laser_pose)
-        distances = self.body.physics.ray_distances(pose[:3, 3], self._rays @ pose[:3, :3].T,
+        origin, rotation = self.body.pose_in_world(self._laser_pose)
+        distances = self.body.physics.ray_distances(origin, self._rays @ rotation.T,
                                                     self.laser.range_max, self.body.ray_mask)
         return ranges_from_distances(self.laser, distances, self._rng)
 
@@ -261,17 +260,15 @@ class SimRobot:
             self._sample_imu(filter_acceleration=False)
         return self._imu_state
 
+    def camera_pose(self) -> Tuple[np.ndarray, np.ndarray]:
+        """World (position, 3x3 rotation) of what the camera renders from: its sensor's pose
+        in its link, turned from the link's x forward to the optical frame's z forward."""
+        position, rotation = self.body.pose_in_world(self._camera_pose)
+        return position, rotation @ LINK_TO_OPTICAL
+
     def camera_image(self, depth: bool = False):
         """(rgb uint8 HxWx3, depth float32 HxW metres or None) seen by the camera now."""
-        pose = self._in_world(self._camera_pose)
-        return self.camera.render(pose[:3, 3], pose[:3, :3] @ LINK_TO_OPTICAL, depth=depth)
-
-    def _in_world(self, in_root: np.ndarray) -> np.ndarray:
-        pos, orn = self.body.footprint_pose()
-        root = np.eye(4)
-        root[:3, :3] = kinematics.rotation_matrix(orn)
-        root[:3, 3] = pos
-        return root @ in_root
+        return self.camera.render(*self.camera_pose(), depth=depth)
 
     def _sample_imu(self, filter_acceleration: bool = True) -> None:
         """Read the chassis once at an IMU tick: low-pass the acceleration (from the change of

@@ -176,11 +176,8 @@ class Simulation:
         self._next_output_ns = self.time_ns
         return robot
 
-    def remove_robot(self, name: str) -> None:
-        """Take robot ``name`` out of the world (delete_model); KeyError if there is none."""
-        self.models.remove(name)
-
     def _forget_robot(self, name: str) -> None:
+        """The robot's part of ``self.models.remove(name)`` (delete_model)."""
         robot = self.robots.pop(name)
         self._robot_list.remove(robot)
         robot.body.remove()
