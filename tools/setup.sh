@@ -166,7 +166,7 @@ pip_install() {
     || fail "pip install $* failed in $venv"
 }
 
-MAIN_CHECK='import rospy, pybullet, numpy
+MAIN_CHECK='import rospy, pybullet, numpy, trimesh, collada, xacro
 assert pybullet.isNumpyEnabled(), "pybullet was built without numpy"'
 
 install_python() {
@@ -190,12 +190,12 @@ install_python() {
   pip_install "$VENV" "${flags[@]}" "${pkgs[@]}"
   local error
   if ! error=$("$VENV/bin/python3" -c "$MAIN_CHECK" 2>&1); then
-    fail "the venv cannot import rospy, pybullet and numpy together: $(tail -n 1 <<<"$error")"
+    fail "the venv cannot import rospy, pybullet, numpy and the mesh readers together: $(tail -n 1 <<<"$error")"
   fi
   printf '%s\n' "$PLAN_STAMP" >"$VENV/$STAMP_NAME"
 }
 
-PY38_CHECK='import rospy, genpy, pybullet, numpy, pytest, yaml, PIL
+PY38_CHECK='import rospy, genpy, pybullet, numpy, pytest, yaml, PIL, trimesh, collada
 assert pybullet.isNumpyEnabled(), "pybullet was built without numpy"'
 
 install_python38() {
@@ -220,7 +220,8 @@ install_python38() {
   local pkgs=()
   read -r -a pkgs <<<"$PY38_PIP"
   # Wheels only: the compiled modules must be built for 3.8, not taken from the system.
-  pip_install "$VENV38" --only-binary=:all: "${pkgs[@]}"
+  # pycollada for 3.8 (0.8) exists only as source: pure Python, built in a second.
+  pip_install "$VENV38" --only-binary=:all: --no-binary=pycollada "${pkgs[@]}"
   local site
   site=$("$VENV38/bin/python3" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
   # Appended to sys.path (after the venv's own packages): the system's pure-Python ROS modules.

@@ -37,6 +37,12 @@ NUMPY_PY38 = "numpy>=1.23,<1.25"  # pybullet's cp38 wheel needs numpy's C API 0x
 NUMPY_PY39_UP = "numpy>=2"
 PYTEST_NOETIC = "pytest>=6.2"  # focal's python3-pytest 4.6.9 fails pytest.approx on tuples
 PILLOW_NOETIC = "Pillow>=7.1"  # focal's 7.0 has no ImageGrab.grab(xdisplay=): the screenshot tests
+# Gazebo's assets: meshes (Collada through pycollada, STL, OBJ) and ROS 1's xacro (PyPI's 1.13.x;
+# its 2.x releases are ROS 2's). On Python 3.8: trimesh 4.x, and pycollada 0.8 (0.9 needs 3.9;
+# 0.8 is a source package, pure Python).
+MESH_PIP = ("trimesh>=4,<6", "pycollada>=0.8")
+MESH_PIP_PY38 = ("trimesh>=4,<5", "pycollada>=0.8,<0.9")
+XACRO = "xacro==1.13.3"
 WHEEL_MACHINES = ("x86_64", "amd64")
 WHEEL_PYTHONS = ((3, 8), (3, 11))  # pybullet 3.2.7 wheels: cp38, cp39, cp310, cp311
 DEBIAN_DIST_PACKAGES = "/usr/lib/python3/dist-packages"
@@ -87,7 +93,7 @@ OPTIONAL_APT = ("ignition-tools", "libsdformat-dev", "xdot", "ros-noetic-rqt-gra
 
 # The Python 3.8 venv of `make test` (unit tests only): compiled modules from PyPI, since
 # Debian's are built for its own Python; Debian's pure-Python ROS modules through a .pth.
-PY38_PIP = (PYBULLET, NUMPY_PY38, "pytest", "Pillow", "PyYAML", "netifaces")
+PY38_PIP = (PYBULLET, NUMPY_PY38, "pytest", "Pillow", "PyYAML", "netifaces") + MESH_PIP_PY38
 
 UBUNTU_CODENAMES = {"bionic": (18, 4), "focal": (20, 4), "jammy": (22, 4), "noble": (24, 4)}
 DEBIAN_CODENAMES = {"buster": 10, "bullseye": 11, "bookworm": 12, "trixie": 13, "forky": 14}
@@ -126,7 +132,9 @@ class Plan:
 
     @property
     def pip(self):
-        return ((PYBULLET, self.numpy) + ((self.pytest,) if self.pytest else ())
+        meshes = MESH_PIP_PY38 if tuple(self.python) == (3, 8) else MESH_PIP
+        return ((PYBULLET, self.numpy) + meshes + (XACRO,)
+                + ((self.pytest,) if self.pytest else ())
                 + ((PILLOW_NOETIC,) if self.ros == "noetic" else ()))
 
     @property

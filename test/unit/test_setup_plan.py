@@ -11,6 +11,8 @@ import pytest
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCRIPT = os.path.join(ROOT, "tools", "setup_plan.py")
 SETUP_SH = os.path.join(ROOT, "tools", "setup.sh")
+MESHES_XACRO = ("trimesh>=4,<6", "pycollada>=0.8", "xacro==1.13.3")
+MESHES_XACRO_PY38 = ("trimesh>=4,<5", "pycollada>=0.8,<0.9", "xacro==1.13.3")
 
 _spec = importlib.util.spec_from_file_location("setup_plan", SCRIPT)
 setup_plan = importlib.util.module_from_spec(_spec)
@@ -88,7 +90,7 @@ def test_debian_12_uses_debians_ros_and_the_pybullet_wheel():
     assert not [p for p in plan.apt if p.startswith("ros-noetic-")]
     assert "python3-pytest" in plan.apt and plan.pytest == ""
     assert plan.numpy == "numpy>=2" and plan.pybullet_from == "wheel"
-    assert plan.pip == ("pybullet==3.2.7", "numpy>=2") and plan.pip_first == ()
+    assert plan.pip == ("pybullet==3.2.7", "numpy>=2") + MESHES_XACRO and plan.pip_first == ()
     assert plan.pip_flags == () and "python3-dev" not in plan.apt
     assert plan.gazebo_msgs == "repo"  # Debian has no gazebo_msgs: msgs/gazebo_msgs is built
     assert not plan.apt_update_first and plan.notes == ()
@@ -108,7 +110,7 @@ def test_debian_13_builds_pybullet_from_source_with_numpy():
     assert plan.pybullet_from == "source" and "python3-dev" in plan.apt
     assert plan.pip_first == ("numpy>=2", "setuptools", "wheel")
     assert plan.pip_flags == ("--no-build-isolation",)
-    assert plan.pip == ("pybullet==3.2.7", "numpy>=2")
+    assert plan.pip == ("pybullet==3.2.7", "numpy>=2") + MESHES_XACRO
     (note,) = plan.notes
     assert "from source" in note and "5 minutes" in note
 
@@ -131,7 +133,8 @@ def test_ubuntu_2004_with_noetic_uses_noetics_packages_and_python_38_pins():
     assert not {"python3-rospy", "ros-core", "catkin", "python3-pytest"} & set(plan.apt)
     assert plan.numpy == "numpy>=1.23,<1.25"  # pybullet's cp38 wheel: numpy C API 0x10
     assert plan.pytest == "pytest>=6.2"       # focal's pytest 4.6.9 is too old
-    assert plan.pip == ("pybullet==3.2.7", "numpy>=1.23,<1.25", "pytest>=6.2", "Pillow>=7.1")
+    assert plan.pip == ("pybullet==3.2.7", "numpy>=1.23,<1.25") + MESHES_XACRO_PY38 + (
+        "pytest>=6.2", "Pillow>=7.1")
     assert plan.pybullet_from == "wheel" and plan.gazebo_msgs == "system"
     assert "ros-noetic-rqt-graph" in plan.apt_optional
 
@@ -251,7 +254,8 @@ def test_shell_output_evaluates_in_bash(tmp_path):
         ["bash", "-c", 'set -eu; eval "$1"; printf "%s\\n" "$PLAN_ROS_SETUP" "$PLAN_PIP" '
          '"$PLAN_GAZEBO_MSGS" "$PLAN_PLATFORM"', "bash", run.stdout],
         stdout=subprocess.PIPE, universal_newlines=True, timeout=60).stdout.splitlines()
-    assert shown == ["/opt/ros/noetic/setup.bash", "pybullet==3.2.7 numpy>=1.23,<1.25 pytest>=6.2 Pillow>=7.1",
+    assert shown == ["/opt/ros/noetic/setup.bash", "pybullet==3.2.7 numpy>=1.23,<1.25 trimesh>=4,<5 pycollada>=0.8,<0.9 "
+                     "xacro==1.13.3 pytest>=6.2 Pillow>=7.1",
                      "system", "Ubuntu 20.04 LTS with ROS Noetic (/opt/ros/noetic)"]
     # a name with a quote survives the round trip
     run = run_plan(tmp_path, 'ID=debian\nVERSION_ID=12\nPRETTY_NAME="Bob\'s Debian 12"\n',
