@@ -17,6 +17,11 @@ Measured (Burger in turtlebot3_world unless said):
                     as fast as possible); spawn and delete round trips; stage 1 with a
                     turtlebot3_dqn-style client: environment steps per wall second
   scaling           real_time_factor 0, 1 / 4 / 8 subscribers to /scan: achieved factor
+  meshes            turtlebot3_world as Gazebo users have it (test/fixtures: the world file that
+                    includes model://turtlebot3_world, whose walls and hexagons are Collada
+                    meshes, found through GAZEBO_MODEL_PATH): start-up and as fast as possible
+                    with every sensor subscribed, beside the same rows of the built-in world
+                    (its primitive-shape copy, the default)
   multi             three Burgers in turtlebot3_house (multi_turtlebot3.launch) with every
                     sensor of each and /tf subscribed: sim CPU at real time, factor as fast as
                     possible; 1, 2, 4, 8 Burgers spawned into the empty world (the sim node
@@ -24,7 +29,7 @@ Measured (Burger in turtlebot3_world unless said):
                     stepped without ROS (physics alone; physics and every sensor computed)
 
 ``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, jitter, fast, world,
-subscribers, camera, render, multi); the default is all of them.
+subscribers, camera, render, meshes, multi); the default is all of them.
 """
 import argparse
 import os
@@ -36,6 +41,9 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+FIXTURES = os.path.join(HERE, os.pardir, "test", "fixtures")
+MESH_WORLD = os.path.abspath(os.path.join(FIXTURES, "worlds", "turtlebot3_world_meshes.world"))
+MESH_MODELS = os.path.abspath(os.path.join(FIXTURES, "gazebo_models"))
 sys.path.insert(0, os.path.join(HERE, os.pardir, "src"))
 
 ALL_SENSORS = ["/scan", "/odom", "/imu", "/joint_states", "/tf"]
@@ -60,9 +68,10 @@ class SimRun:
     """One roslaunch of sim.launch on its own master, plus helper processes."""
 
     def __init__(self, launch_args, model="burger", world="turtlebot3_world",
-                 launch="sim.launch"):
+                 launch="sim.launch", env=None):
         self.port = free_port()
-        self.env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % self.port)
+        self.env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % self.port,
+                        **(env or {}))
         self.launch_file = launch
         self.args = (["model:=%s" % model, "status_period:=0"] + launch_args
                      + (["world:=%s" % world] if launch == "sim.launch" else []))
@@ -147,8 +156,14 @@ def read_report(proc):
     raise RuntimeError("subscriber process ended")
 
 
-def measure_startup() -> float:
-    run = SimRun([])
+def mesh_world_run(launch_args=()):
+    """SimRun keywords of the mesh turtlebot3_world at the built-in one's spawn."""
+    return dict(launch_args=["x_pos:=-2.0", "y_pos:=-0.5"] + list(launch_args),
+                world=MESH_WORLD, env={"GAZEBO_MODEL_PATH": MESH_MODELS})
+
+
+def measure_startup(**run_args) -> float:
+    run = SimRun(**dict({"launch_args": []}, **run_args))
     try:
         probe = run.start_helper("first_scan.py")
         time.sleep(1.5)  # its imports are done; it now waits for the master
@@ -164,10 +179,12 @@ def measure_startup() -> float:
         run.stop()
 
 
-def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger"):
+def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger", mesh_world=False):
     """(achieved factor, sim CPU % of one core, sim RSS MB, messages per sim second) with
-    ``topics`` subscribed."""
-    run = SimRun(["real_time_factor:=%g" % rtf], model=model)
+    ``topics`` subscribed; ``mesh_world``: in the mesh turtlebot3_world."""
+    rate = ["real_time_factor:=%g" % rtf]
+    run = (SimRun(model=model, **mesh_world_run(rate)) if mesh_world
+           else SimRun(rate, model=model))
     try:
         run.start()
         subs = run.start_helper("subscribers.py", *topics)
@@ -463,7 +480,7 @@ def median(values):
 
 
 GROUPS = ("startup", "realtime", "jitter", "fast", "world", "subscribers", "camera", "render",
-          "multi")
+          "meshes", "multi")
 
 
 def main():
@@ -551,11 +568,24 @@ def main():
     if "render" in only:
         for (renderer, width, height), ms in sorted(render_times().items()):
             row("render %dx%d, %s" % (width, height, renderer), "%.1f" % ms, "ms")
+    if "meshes" in only:
+        mesh_rows(args.runs, row)
     if "multi" in only:
         multi_rows(args.runs, row)
     print("(%.0f s; load average now %s)" % (time.time() - started,
                                              " ".join("%.2f" % v for v in os.getloadavg())),
           flush=True)
+
+
+def mesh_rows(runs, row):
+    """The mesh turtlebot3_world (Gazebo's files) beside the built-in primitive copy."""
+    for label, mesh in (("built-in turtlebot3_world (primitive shapes)", False),
+                        ("turtlebot3_world from model:// with Collada meshes", True)):
+        startup = [measure_startup(**(mesh_world_run() if mesh else {})) for _ in range(runs)]
+        row("%s: start-up -> first /scan" % label, "%.2f" % median(startup), "s")
+        fast = [measure_running(0, ALL_SENSORS, mesh_world=mesh)[0] for _ in range(runs)]
+        row("  the same: as fast as possible, every sensor subscribed", "%.1f" % median(fast),
+            "x")
 
 
 def multi_rows(runs, row):

@@ -21,6 +21,7 @@ def yaw_of(q) -> float:
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
+WAIT = 60.0            # s: how long a test waits for the sim to answer or publish
 ARENA_APOTHEM = 2.540  # m: turtlebot3_world's inner wall flats from the centre (tb3_facts 4.2)
 
 
@@ -36,6 +37,21 @@ def arena_wall_distance(origin, bearing_deg: float) -> float:
         if along > 1e-9:
             best = min(best, (ARENA_APOTHEM - (nx * ox + ny * oy)) / along)
     return best
+
+
+# The Burger's collision box in base_footprint: x -0.102..0.038, y +-0.070.
+BURGER_BOX_CORNERS = ((-0.102, -0.070), (-0.102, 0.070), (0.038, -0.070), (0.038, 0.070))
+
+
+def box_outside_arena(x: float, y: float, yaw: float) -> float:
+    """How far (m) the Burger's collision box at (x, y, yaw) reaches beyond turtlebot3_world's
+    inner wall (negative: that far inside)."""
+    def outside_by(px, py):
+        return max(math.cos(math.radians(30 + 60 * k)) * px
+                   + math.sin(math.radians(30 + 60 * k)) * py - ARENA_APOTHEM for k in range(6))
+    return max(outside_by(x + cx * math.cos(yaw) - cy * math.sin(yaw),
+                          y + cx * math.sin(yaw) + cy * math.cos(yaw))
+               for cx, cy in BURGER_BOX_CORNERS)
 
 
 def wait_for(predicate, timeout: float, step: float = 0.02) -> bool:

@@ -8,18 +8,7 @@ import unittest
 import rospy
 import rostest
 
-from sim_test_support import Driver, wait_for, yaw_of
-
-INNER_APOTHEM = 2.540  # m: the arena's inner wall flats from its centre (tb3_facts 4.2)
-# The Burger's collision box in base_footprint (tb3_facts 1.1): x -0.102..0.038, y +-0.070.
-BOX_CORNERS = [(-0.102, -0.070), (-0.102, 0.070), (0.038, -0.070), (0.038, 0.070)]
-
-
-def outside_by(x: float, y: float) -> float:
-    """How far (m) a point lies beyond the arena's inner wall (negative: inside)."""
-    return max(math.cos(math.radians(30 + 60 * k)) * x + math.sin(math.radians(30 + 60 * k)) * y
-               - INNER_APOTHEM for k in range(6))
-
+from sim_test_support import Driver, box_outside_arena, wait_for, yaw_of
 
 class SimWallTest(unittest.TestCase):
     def test_full_speed_into_the_wall_stops_at_it(self):
@@ -33,10 +22,8 @@ class SimWallTest(unittest.TestCase):
         drive.send(0.0, 0.0)
         self.assertIsNotNone(end, "no odometry 20 s of sim time later")
         pose = end.pose.pose
-        x, y, yaw = pose.position.x, pose.position.y, yaw_of(pose.orientation)
-        worst = max(outside_by(x + cx * math.cos(yaw) - cy * math.sin(yaw),
-                               y + cx * math.sin(yaw) + cy * math.cos(yaw))
-                    for cx, cy in BOX_CORNERS)
+        x, y = pose.position.x, pose.position.y
+        worst = box_outside_arena(x, y, yaw_of(pose.orientation))
         self.assertLess(worst, 0.01, "robot at (%.3f, %.3f) pokes %.3f m into the wall"
                         % (x, y, worst))
         self.assertGreater(worst, -0.03, "robot at (%.3f, %.3f) stopped short of the wall"

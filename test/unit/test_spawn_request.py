@@ -84,7 +84,7 @@ def test_urdf_without_plugins():
 @pytest.mark.parametrize("xml, words", [
     ("<sdf><model name='m'><link name='l'></model></sdf>", "model_xml:1: malformed XML"),
     ("<sdf>\n<model name='m'>\n<link name='l'>\n<visual name='v'><geometry><mesh/></geometry>"
-     "</visual></link></model></sdf>", "model_xml:4: unsupported geometry <mesh>"),
+     "</visual></link></model></sdf>", "model_xml:4: <mesh> of m::l::v needs a <uri>"),
     ("<world/>", "root element is <world>"),
     ("<sdf><model name='a'/><model name='b'/></sdf>", "exactly one <model>"),
     ("", "empty"),
@@ -92,7 +92,7 @@ def test_urdf_without_plugins():
     ("<sdf>" + "<model name='m'>" * 100 + "</model>" * 100 + "</sdf>", "nested more than"),
     ("<sdf>" + " " * (MAX_XML_BYTES + 1) + "</sdf>", "more than the 1000000 allowed"),
     (URDF.replace("<sphere radius=\"0.05\"/>", "<mesh filename='package://x/y.stl'/>"),
-     "<mesh> geometry is not supported"),
+     "URDF link 'top' <mesh>: package://x/y.stl: no ROS package 'x'"),
     (URDF.replace('<parent link="base"/>', '<parent link="nowhere"/>'), "must name links"),
 ])
 def test_refused_with_one_line(xml, words):

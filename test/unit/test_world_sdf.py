@@ -257,11 +257,13 @@ def test_malformed_xml_names_file_and_line(tmp_path):
     assert ":4:" in message and "malformed XML" in message and "mismatched tag" in message
 
 
-def test_mesh_geometry_names_element_file_and_line(tmp_path):
-    path = write(tmp_path, model("<mesh><uri>model://x/m.dae</uri></mesh>"))
-    message = fault(path)
-    assert ":4:" in message and "<mesh>" in message and "m::l::c" in message
-    assert "box, cylinder, sphere, plane, polyline" in message
+def test_a_missing_mesh_names_element_file_and_line(tmp_path, monkeypatch):
+    monkeypatch.setenv("GAZEBO_MODEL_PATH", str(tmp_path))
+    message = fault(write(tmp_path, model("<mesh><uri>model://x/m.dae</uri></mesh>")))
+    assert ":4: model://x/m.dae not found: searched GAZEBO_MODEL_PATH (%s)" % tmp_path in message
+    message = fault(write(tmp_path, model("<heightmap><uri>h.png</uri></heightmap>")))
+    assert ":4:" in message and "<heightmap>" in message and "m::l::c" in message
+    assert "box, cylinder, sphere, plane, polyline, mesh" in message
 
 
 @pytest.mark.parametrize("geometry, element", [

@@ -1,5 +1,7 @@
-"""Small rigid-body helpers. Quaternions are (x, y, z, w), as pybullet and geometry_msgs order
-them; vectors are (x, y, z) in metres or m/s; angles in radians, REP 103."""
+"""Rotations and small rigid-body helpers: every conversion between roll-pitch-yaw, quaternion
+and 3x3 matrix lives here. Quaternions are (x, y, z, w), as pybullet and geometry_msgs order
+them; vectors are (x, y, z) in metres or m/s; angles in radians, REP 103. Roll, pitch, yaw are
+fixed-axis angles as SDF and URDF define them: R = Rz(yaw) Ry(pitch) Rx(roll)."""
 import math
 from typing import Sequence, Tuple
 
@@ -42,3 +44,59 @@ def to_body(q: Sequence[float], v_world: Sequence[float]) -> Tuple[float, float,
 def wrap_angle(a: float) -> float:
     """Angle wrapped into [-pi, pi)."""
     return (a + math.pi) % (2.0 * math.pi) - math.pi
+
+
+def matrix_from_rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """3x3 rotation matrix R = Rz(yaw) Ry(pitch) Rx(roll): v_parent = R @ v_child."""
+    cr, sr = math.cos(roll), math.sin(roll)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return np.array(((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+                     (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+                     (-sp, cp * sr, cp * cr)))
+
+
+def rpy_from_matrix(m) -> Tuple[float, float, float]:
+    """(roll, pitch, yaw) of a 3x3 rotation matrix, the inverse of ``matrix_from_rpy``; at
+    gimbal lock (pitch +-pi/2) the whole turn about z is put in yaw. Never -0.0."""
+    cos_pitch = math.hypot(m[0][0], m[1][0])
+    pitch = math.atan2(-m[2][0], cos_pitch) + 0.0      # + 0.0 turns -0.0 into 0.0
+    if cos_pitch < 1e-9:
+        return 0.0, pitch, math.atan2(-m[0][1], m[1][1]) + 0.0
+    return math.atan2(m[2][1], m[2][2]) + 0.0, pitch, math.atan2(m[1][0], m[0][0]) + 0.0
+
+
+def quat_from_rpy(roll: float, pitch: float, yaw: float) -> Quat:
+    """Quaternion of fixed-axis roll, pitch, yaw (the rotation of ``matrix_from_rpy``)."""
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
+
+
+def rpy_from_quat(q: Sequence[float]) -> Tuple[float, float, float]:
+    """(roll, pitch, yaw) of a unit quaternion, the inverse of ``quat_from_rpy``."""
+    x, y, z, w = q
+    roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
+    pitch = math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x))))
+    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    return roll, pitch, yaw
+
+
+def quat_from_matrix(m) -> Quat:
+    """Unit quaternion of a 3x3 rotation matrix (the inverse of ``rotation_matrix``)."""
+    trace = m[0][0] + m[1][1] + m[2][2]
+    if trace > 0:
+        s = 2.0 * math.sqrt(trace + 1.0)
+        return ((m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s,
+                0.25 * s)
+    i = max(range(3), key=lambda k: m[k][k])
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = 2.0 * math.sqrt(1.0 + m[i][i] - m[j][j] - m[k][k])
+    q = [0.0, 0.0, 0.0, 0.0]
+    q[i] = 0.25 * s
+    q[j] = (m[j][i] + m[i][j]) / s
+    q[k] = (m[k][i] + m[i][k]) / s
+    q[3] = (m[k][j] - m[j][k]) / s
+    return tuple(q)

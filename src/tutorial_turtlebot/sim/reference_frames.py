@@ -14,6 +14,8 @@ The rules (gazebo_api.md 2.3), which are Gazebo's, not textbook kinematics:
 import math
 from typing import Sequence, Tuple
 
+from .kinematics import quat_from_rpy, rpy_from_quat  # noqa: F401 - the world API's conversions
+
 Vec = Tuple[float, float, float]
 Quat = Tuple[float, float, float, float]
 Pose = Tuple[Vec, Quat]
@@ -109,21 +111,3 @@ def link_twist_to_world(twist: Twist, frame_twist: Twist) -> Twist:
     """set_link_state's twist given in a frame: the frame's velocity subtracted, not rotated."""
     (v, w), (vf, wf) = twist, frame_twist
     return (tuple(a - b for a, b in zip(v, vf)), tuple(a - b for a, b in zip(w, wf)))
-
-
-def quat_from_rpy(roll: float, pitch: float, yaw: float) -> Quat:
-    """Quaternion of SDF's fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
-
-
-def rpy_from_quat(q: Quat) -> Vec:
-    """(roll, pitch, yaw) of a unit quaternion, the inverse of ``quat_from_rpy``."""
-    x, y, z, w = q
-    roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
-    pitch = math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x))))
-    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-    return roll, pitch, yaw

@@ -4,7 +4,10 @@ The robot is taken as an upright cylinder about its spawn point: ``footprint_rad
 ``FLOOR_CLEARANCE`` above the floor up to ``height``. A world's collision shapes (``world_sdf``)
 that overlap that cylinder are obstacles; planes are floors and never are. Shapes whose axis
 stands upright (every shape of this package's worlds) are measured exactly in plan; a tilted one
-is measured at a few heights of the cylinder's axis (close, not exact).
+is measured at a few heights of the cylinder's axis (close, not exact). A mesh is measured
+against the plan view of its triangles that reach into the cylinder's heights (whole triangles,
+so a sloping face can count as a little nearer than it is), and the point is inside it when a ray
+from the cylinder's axis crosses its surface an odd number of times.
 
 Units: metres, in the world frame (z up), as in world_sdf.
 """
@@ -15,6 +18,8 @@ from typing import Iterable, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import WorldError
+from .kinematics import matrix_from_rpy
+from .mesh_file import load_mesh
 from .world_sdf import Shape, World
 
 FLOOR_CLEARANCE = 0.01   # m: shapes entirely below this are floor coverings the robot drives on
@@ -65,8 +70,11 @@ def find_obstacle(world: World, x: float, y: float, footprint_radius: float, z: 
 def plan_distance(shape: Shape, x: float, y: float, band: Tuple[float, float]) -> Optional[float]:
     """Horizontal distance (m) from the vertical line through (x, y) to ``shape`` within the
     heights ``band`` (negative inside it); None if the shape lies wholly above or below."""
-    rotation = _rotation(*shape.pose[3:])
+    rotation = matrix_from_rpy(*shape.pose[3:])
     centre = np.array(shape.pose[:3])
+    if shape.kind == "mesh":
+        mesh = load_mesh(shape.mesh, shape.size)
+        return _mesh_distance((mesh.vertices @ rotation.T + centre)[mesh.faces], x, y, band)
     axis_z = rotation[2, 2]
     if abs(abs(axis_z) - 1.0) > 1e-9:
         return _sampled_distance(shape, rotation, centre, x, y, band)
@@ -85,15 +93,6 @@ def plan_distance(shape: Shape, x: float, y: float, band: Tuple[float, float]) -
         radius = math.sqrt(max(shape.size[0] ** 2 - (nearest - centre[2]) ** 2, 0.0))
         return math.hypot(lx, ly) - radius
     return _polygon_distance(lx, ly, shape.points)
-
-
-def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """SDF's fixed-axis roll, pitch, yaw as a 3x3 matrix: Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    return np.array(((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
-                     (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
-                     (-sp, cp * sr, cp * cr)))
 
 
 def _local_z_range(shape: Shape) -> Tuple[float, float]:
@@ -132,6 +131,59 @@ def _point_distance(shape: Shape, lx: float, ly: float, lz: float) -> float:
     plan = _polygon_distance(lx, ly, shape.points)             # polyline prism, z 0..height
     vertical = max(-lz, lz - shape.size[0])
     return math.hypot(max(plan, 0.0), max(vertical, 0.0)) + min(max(plan, vertical), 0.0)
+
+
+def _mesh_distance(triangles: np.ndarray, x: float, y: float,
+                   band: Tuple[float, float]) -> Optional[float]:
+    """Plan distance from (x, y) to the (M, 3, 3) world-frame ``triangles`` that reach into the
+    heights ``band`` (negative inside the closed surface); None if none does."""
+    z = triangles[:, :, 2]
+    near = triangles[(z.max(axis=1) > band[0]) & (z.min(axis=1) < band[1])]
+    if not len(near):
+        return None
+    distance = float(_plan_triangle_distances(near[:, :, :2], np.array((x, y))).min())
+    inside = _crossings(triangles, np.array((x, y, (band[0] + band[1]) / 2))) % 2 == 1
+    return -distance if inside else distance
+
+
+def _plan_triangle_distances(tri: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Distance from the point ``p`` to each (M, 3, 2) triangle in the plane (0 inside one)."""
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    best = np.full(len(tri), np.inf)
+    for u, v in ((a, b), (b, c), (c, a)):
+        edge = v - u
+        length2 = np.einsum("ij,ij->i", edge, edge)
+        t = np.clip(np.einsum("ij,ij->i", p - u, edge) / np.where(length2 > 0, length2, 1.0),
+                    0.0, 1.0)
+        best = np.minimum(best, np.linalg.norm(u + edge * t[:, None] - p, axis=1))
+    cross = [_cross_2d(v - u, p - u) for u, v in ((a, b), (b, c), (c, a))]
+    area = _cross_2d(b - a, c - a)
+    inside = (np.abs(area) > 1e-12) & (
+        ((cross[0] >= 0) & (cross[1] >= 0) & (cross[2] >= 0))
+        | ((cross[0] <= 0) & (cross[1] <= 0) & (cross[2] <= 0)))
+    return np.where(inside, 0.0, best)
+
+
+def _cross_2d(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """z of the cross product of rows of plane vectors."""
+    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+
+def _crossings(tri: np.ndarray, origin: np.ndarray) -> int:
+    """How many of the (M, 3, 3) triangles a ray from ``origin`` along +x (tilted a hair off
+    the axes, so that it misses edges and corners) crosses (Moller-Trumbore)."""
+    direction = np.array((1.0, 1.3e-7, 0.7e-7))
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    h = np.cross(direction, e2)
+    det = np.einsum("ij,ij->i", e1, h)
+    ok = np.abs(det) > 1e-14
+    inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+    s = origin - tri[:, 0]
+    u = np.einsum("ij,ij->i", s, h) * inv
+    q = np.cross(s, e1)
+    v = (q @ direction) * inv
+    t = np.einsum("ij,ij->i", e2, q) * inv
+    return int(np.count_nonzero(ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)))
 
 
 def _rectangle_distance(px: float, py: float, half_x: float, half_y: float) -> float:
@@ -188,8 +240,8 @@ def _shape_reach(geometry, pose) -> float:
         radius, length = size
         corners = [(radius * math.cos(a), radius * math.sin(a), sz * length / 2)
                    for a in np.linspace(0.0, 2 * math.pi, 32, endpoint=False) for sz in (-1, 1)]
-    else:                                    # a mesh: its frame origin only (none in our URDFs)
-        corners = [(0.0, 0.0, 0.0)]
+    else:                                    # a mesh: its corners, scaled by ``size``
+        corners = load_mesh(geometry.filename, size).vertices
     points = pose[:3, :3] @ np.array(corners).T + pose[:3, 3:4]
     return float(np.max(np.hypot(points[0], points[1])))
 

@@ -2,22 +2,27 @@
 
 Static models: every collision shape becomes one fixed body that also carries its visual twin's
 colour, so contacts, rays and cameras all see it; a visual without a collision twin becomes a
-body that cameras see and rays and contacts pass through.
+body that cameras see and rays and contacts pass through. A static mesh collides with its
+triangles themselves.
 Models that are not ``<static>``: every link becomes one movable rigid body of the link's
-``<inertial>`` mass and inertia, holding all its collisions and visuals (box, cylinder, sphere)
-and its collisions' friction. Its frame is the link's centre of mass (see ``link_com_pose``).
+``<inertial>`` mass and inertia, holding all its collisions and visuals (box, cylinder, sphere,
+mesh) and its collisions' friction; a mesh collides as its convex hull (Bullet's moving bodies
+are convex). Its frame is the link's centre of mass (see ``link_com_pose``).
+Mesh visuals are drawn part by part, each in its SDF ``<material>`` colour, or where the visual
+has none, in the mesh file's own colour of that part.
 
 Units: metres; poses in the world frame (z up), as in world_sdf.
 """
-import math
 import os
 import tempfile
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Dict, List, Sequence, Tuple
 
 import numpy as np
 
 from .bullet import pybullet
 from ..errors import WorldError
+from .kinematics import quat_from_matrix, quat_from_rpy
+from .mesh_file import Mesh, MeshPart, load_mesh, write_obj_parts
 from .world_sdf import Inertial, Link, Shape, World
 
 # World bodies are in collision group 4. A laser that must see the world only casts rays with
@@ -32,7 +37,7 @@ WORLD_COLLISION_MASK = ALL_COLLISION_GROUPS & ~WORLD_COLLISION_GROUP
 # static bodies' mask keeps, so that they rest on the floor and hit walls.
 MOVABLE_COLLISION_GROUP = WORLD_COLLISION_GROUP | 8
 MOVABLE_COLLISION_MASK = ALL_COLLISION_GROUPS
-MOVABLE_KINDS = ("box", "cylinder", "sphere")
+MOVABLE_KINDS = ("box", "cylinder", "sphere", "mesh")
 
 WORLD_FRICTION = 1.0        # lateral friction coefficient of every world surface
 WORLD_RESTITUTION = 0.0
@@ -98,29 +103,12 @@ def _principal(inertial: Inertial):
     moments, axes = np.linalg.eigh(tensor)
     if np.linalg.det(axes) < 0:
         axes[:, 2] = -axes[:, 2]
-    return _quat_from_matrix(axes), tuple(float(m) for m in moments)
-
-
-def _quat_from_matrix(m) -> Tuple[float, float, float, float]:
-    trace = m[0][0] + m[1][1] + m[2][2]
-    if trace > 0:
-        s = 2.0 * math.sqrt(trace + 1.0)
-        return ((m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s,
-                0.25 * s)
-    i = int(np.argmax([m[0][0], m[1][1], m[2][2]]))
-    j, k = (i + 1) % 3, (i + 2) % 3
-    s = 2.0 * math.sqrt(1.0 + m[i][i] - m[j][j] - m[k][k])
-    q = [0.0, 0.0, 0.0, 0.0]
-    q[i] = 0.25 * s
-    q[j] = (m[j][i] + m[i][j]) / s
-    q[k] = (m[k][i] + m[i][k]) / s
-    q[3] = (m[k][j] - m[j][k]) / s
-    return tuple(q)
+    return quat_from_matrix(axes), tuple(float(m) for m in moments)
 
 
 def _pose7(pose: Sequence[float]):
     """An SDF pose (x, y, z, roll, pitch, yaw) as ((x, y, z), quaternion)."""
-    return tuple(pose[:3]), tuple(pybullet.getQuaternionFromEuler(pose[3:]))
+    return tuple(pose[:3]), quat_from_rpy(*pose[3:])
 
 
 def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> int:
@@ -137,11 +125,12 @@ def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> i
     col = -1
     if collisions:
         col = pybullet.createCollisionShapeArray(
-            **_shape_arrays(collisions, to_com, cid, None), physicsClientId=cid)
+            **_shape_arrays(collisions, to_com, cid, mesh_dir, visual=False),
+            physicsClientId=cid)
     vis = -1
     if visuals:
         vis = pybullet.createVisualShapeArray(
-            **_shape_arrays(visuals, to_com, cid, mesh_dir), physicsClientId=cid)
+            **_shape_arrays(visuals, to_com, cid, mesh_dir, visual=True), physicsClientId=cid)
     _, moments = _principal(link.inertial)
     body = pybullet.createMultiBody(baseMass=link.inertial.mass, baseCollisionShapeIndex=col,
                                     baseVisualShapeIndex=vis, basePosition=com_pos,
@@ -159,51 +148,60 @@ def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> i
     return body
 
 
-def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: Optional[str]) -> dict:
-    """Keyword arguments of createCollisionShapeArray (``mesh_dir`` None) or
-    createVisualShapeArray for primitive ``shapes`` placed in the body frame ``to_com``."""
-    args = {"shapeTypes": [], "halfExtents": [], "radii": [], "lengths": [],
-            "fileNames": [], "meshScales": [],
-            "collisionFramePositions" if mesh_dir is None else "visualFramePositions": [],
-            "collisionFrameOrientations" if mesh_dir is None else "visualFrameOrientations": []}
-    positions = args.get("collisionFramePositions", args.get("visualFramePositions"))
-    orientations = args.get("collisionFrameOrientations", args.get("visualFrameOrientations"))
-    if mesh_dir is not None:
+def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: bool) -> dict:
+    """Keyword arguments of createVisualShapeArray (``visual``) or createCollisionShapeArray for
+    ``shapes`` placed in the body frame ``to_com``; mesh files are written in ``mesh_dir``."""
+    frame = "visualFrame" if visual else "collisionFrame"
+    args = {"shapeTypes": [], "halfExtents": [], "radii": [], "lengths": [], "fileNames": [],
+            "meshScales": [], frame + "Positions": [], frame + "Orientations": []}
+    if visual:
         args["rgbaColors"] = []
-    for s in shapes:
-        pos, orn = pybullet.multiplyTransforms(*to_com, *_pose7(s.pose))
-        positions.append(pos)
-        orientations.append(orn)
-        half, radius, length, mesh = [0.0] * 3, 0.0, 0.0, ""
-        kind = {"box": pybullet.GEOM_BOX, "cylinder": pybullet.GEOM_CYLINDER,
-                "sphere": pybullet.GEOM_SPHERE}[s.kind]
-        if s.kind == "box":
-            half = [v / 2 for v in s.size]
-            if mesh_dir is not None:   # a file: EGL flattens thin GEOM_BOX visuals
-                hx, hy = half[0], half[1]
-                mesh = _obj_file([(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)],
-                                 -half[2], half[2], mesh_dir)
-                kind = pybullet.GEOM_MESH
-        elif s.kind == "cylinder":
-            radius, length = s.size
-        else:
-            radius = s.size[0]
+
+    def add(kind, pose, rgba, half=(0.0, 0.0, 0.0), radius=0.0, length=0.0, mesh=""):
         args["shapeTypes"].append(kind)
-        args["halfExtents"].append(half)
+        args[frame + "Positions"].append(pose[0])
+        args[frame + "Orientations"].append(pose[1])
+        args["halfExtents"].append(list(half))
         args["radii"].append(radius)
         args["lengths"].append(length)
         args["fileNames"].append(mesh)
         args["meshScales"].append([1.0, 1.0, 1.0])
-        if mesh_dir is not None:
-            args["rgbaColors"].append(s.rgba)
+        if visual:
+            args["rgbaColors"].append(rgba)
+
+    for s in shapes:
+        pose = pybullet.multiplyTransforms(*to_com, *_pose7(s.pose))
+        if s.kind == "mesh":
+            mesh = load_mesh(s.mesh, s.size)
+            if not visual:   # one file of every triangle: pybullet collides with its hull
+                mesh = Mesh(mesh.path, mesh.vertices, (MeshPart(mesh.faces, None),))
+            for path, rgba in write_obj_parts(mesh, mesh_dir):
+                add(pybullet.GEOM_MESH, pose, _part_colour(s, rgba), mesh=path)
+        elif s.kind == "box":
+            half = [v / 2 for v in s.size]
+            if visual:   # a file: EGL flattens thin GEOM_BOX visuals
+                hx, hy = half[0], half[1]
+                add(pybullet.GEOM_MESH, pose, s.rgba, mesh=_obj_file(
+                    [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)], -half[2], half[2], mesh_dir))
+            else:
+                add(pybullet.GEOM_BOX, pose, s.rgba, half=half)
+        elif s.kind == "cylinder":
+            add(pybullet.GEOM_CYLINDER, pose, s.rgba, radius=s.size[0], length=s.size[1])
+        else:
+            add(pybullet.GEOM_SPHERE, pose, s.rgba, radius=s.size[0])
     return args
+
+
+def _part_colour(shape: Shape, rgba) -> Tuple[float, float, float, float]:
+    """The colour a mesh part is drawn in: the SDF material's, else the file's, else grey."""
+    return tuple(rgba) if shape.mesh_colours and rgba is not None else shape.rgba
 
 
 def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
     """One fixed body for ``shape``: collision and visual geometry, or visual only."""
     pieces = _pieces(shape, cid, mesh_dir, collide)
     (base_col, base_vis), links = pieces[0], pieces[1:]
-    orientation = pybullet.getQuaternionFromEuler(shape.pose[3:], physicsClientId=cid)
+    orientation = quat_from_rpy(*shape.pose[3:])
     body = pybullet.createMultiBody(
         baseMass=0.0, baseCollisionShapeIndex=base_col, baseVisualShapeIndex=base_vis,
         basePosition=shape.pose[:3], baseOrientation=orientation,
@@ -233,6 +231,8 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
     thick (the 100 m ground, 5 cm thick) into its middle plane, with one triangle missing.
     """
     rgba = shape.rgba
+    if shape.kind == "mesh":
+        return _mesh_pieces(shape, cid, mesh_dir, collide)
     if shape.kind == "polyline":
         polygons = [shape.points] if _is_convex(shape.points) else _triangulate(shape)
         return [_prism(polygon, shape.size[0], rgba, cid, mesh_dir, collide)
@@ -261,6 +261,24 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
     col = pybullet.createCollisionShape(kind, physicsClientId=cid, **col_args) if collide else -1
     vis = pybullet.createVisualShape(kind, rgbaColor=rgba, physicsClientId=cid, **vis_args)
     return [(col, vis)]
+
+
+def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str,
+                 collide: bool) -> List[Tuple[int, int]]:
+    """A static mesh: its triangles as one concave collision shape (a fixed body collides with
+    the triangles themselves) and a visual per colour part (later parts on links of its body)."""
+    mesh = load_mesh(shape.mesh, shape.size)
+    col = -1
+    if collide:
+        col = pybullet.createCollisionShape(
+            pybullet.GEOM_MESH, vertices=mesh.vertices.tolist(),
+            indices=mesh.faces.reshape(-1).tolist(), flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH,
+            physicsClientId=cid)
+    visuals = [pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
+                                          rgbaColor=_part_colour(shape, rgba),
+                                          physicsClientId=cid)
+               for path, rgba in write_obj_parts(mesh, mesh_dir)]
+    return [(col, visuals[0])] + [(-1, v) for v in visuals[1:]]
 
 
 def _prism(polygon: Sequence[Point], height: float, rgba, cid: int, mesh_dir: str,

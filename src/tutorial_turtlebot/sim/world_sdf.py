@@ -4,15 +4,17 @@ No ROS and no pybullet here: a world becomes plain data (``World``, ``Shape``) t
 ``world_bullet`` turns into bodies.
 
 The subset: a ``<world>`` (or bare ``<model>`` elements) holding static or dynamic models, nested
-models and links, whose collisions and visuals have a ``box``, ``cylinder``, ``sphere``, ``plane``
-or one extruded ``polyline`` geometry; ``<pose>`` as "x y z roll pitch yaw" (``degrees="true"``
-allowed); visual ``<material>`` colours; ``<include>`` of ``model://sun`` (a light: skipped) and
-``model://ground_plane`` (Gazebo's standard plane). A model's links keep their ``<inertial>`` (SDF's
-defaults where absent: 1 kg, inertia 1 kg m^2 about each axis) and each collision its
-``<surface><friction><ode><mu>`` (default 1), so that a model that is not ``<static>`` can be a
-movable rigid body. Elements that do not shape the world (physics, scene, light, gui, plugin,
-sensor, joint ...) are skipped. Anything else that
-would carry geometry (a mesh, a heightmap, any other included model) is an error, never a silent gap.
+models and links, whose collisions and visuals have a ``box``, ``cylinder``, ``sphere``, ``plane``,
+one extruded ``polyline`` or a ``mesh`` (Collada, STL, OBJ: ``mesh_file``) geometry; ``<pose>`` as
+"x y z roll pitch yaw" (``degrees="true"`` allowed); visual ``<material>`` colours; ``<include>``
+of a model folder found as Gazebo finds it (``asset_uri``: ``model://`` through GAZEBO_MODEL_PATH
+and the package's own ``models/``, which has Gazebo's ``ground_plane`` and ``sun``), with its
+``<name>``, ``<pose>`` and ``<static>`` overrides, nested to any depth up to MAX_INCLUDE_DEPTH. A
+model's links keep their ``<inertial>`` (SDF's defaults where absent: 1 kg, inertia 1 kg m^2
+about each axis) and each collision its ``<surface><friction><ode><mu>`` (default 1), so that a
+model that is not ``<static>`` can be a movable rigid body. Elements that do not shape the world
+(physics, scene, light, gui, plugin, sensor, joint ...) are skipped. Anything else that would
+carry geometry (a heightmap, a mesh's ``<submesh>``, an actor) is an error, never a silent gap.
 
 Units: metres, radians. Poses are in the world frame (z up); angles are SDF's fixed-axis roll,
 pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
@@ -23,7 +25,11 @@ from dataclasses import dataclass, field, replace
 from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 from xml.parsers import expat
 
-from ..errors import WorldError
+import numpy as np
+
+from ..errors import UserError, WorldError
+from .asset_uri import AssetError, model_sdf_file, resolve_uri
+from .kinematics import matrix_from_rpy, rpy_from_matrix
 from .package_data import data_dir
 
 Pose = Tuple[float, float, float, float, float, float]   # x, y, z (m), roll, pitch, yaw (rad)
@@ -31,7 +37,8 @@ Rgba = Tuple[float, float, float, float]
 Spawn = Tuple[float, float, float]                       # x, y (m), yaw (rad) of base_footprint
 
 IDENTITY: Pose = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-KINDS = ("box", "cylinder", "sphere", "plane", "polyline")
+KINDS = ("box", "cylinder", "sphere", "plane", "polyline", "mesh")
+MAX_INCLUDE_DEPTH = 16        # <include>s nested deeper than this are refused (a model including itself)
 DEFAULT_RGBA: Rgba = (0.7, 0.7, 0.7, 1.0)   # a visual without material: Gazebo's light grey
 
 # Diffuse colours of the Gazebo/<Name> materials (gazebo.material) these worlds and common ones use.
@@ -66,7 +73,7 @@ class Shape:
     kind: str                # one of KINDS
     pose: Pose               # world pose of the shape's frame
     size: Tuple[float, ...]  # box (x, y, z); cylinder (radius, length); sphere (radius,);
-    #                          plane (x, y); polyline (height,)
+    #                          plane (x, y); polyline (height,); mesh (scale x, y, z)
     points: Tuple[Tuple[float, float], ...] = ()  # polyline corners (x, y), counter-clockwise
     rgba: Rgba = DEFAULT_RGBA  # a visual's colour; a collision takes its twin's (else its link's)
     static: bool = True      # from <static> of the model or of any model around it
@@ -75,6 +82,8 @@ class Shape:
     #                             geometry and pose (a collision's visual, a visual's collision)
     link: str = ""           # scoped name of its link ("model::link")
     mu: float = 1.0          # a collision's friction coefficient (<surface><friction><ode><mu>)
+    mesh: str = ""           # a mesh's file, absolute (read by mesh_file.load_mesh with ``size``)
+    mesh_colours: bool = False  # a mesh visual without <material>: the file's own colours
 
 
 @dataclass(frozen=True)
@@ -279,35 +288,13 @@ def parse_xml(data, source: str, max_depth: int = MAX_XML_DEPTH) -> _Node:
     return roots[0]
 
 
-# --- pose algebra (3x3 rotation matrices as nested tuples) --------------------------------------
-
-def _rotation(roll: float, pitch: float, yaw: float):
-    cr, sr = math.cos(roll), math.sin(roll)
-    cp, sp = math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
-            (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
-            (-sp, cp * sr, cp * cr))
-
-
-def _rpy(m) -> Tuple[float, float, float]:
-    cos_pitch = math.hypot(m[0][0], m[1][0])
-    pitch = math.atan2(-m[2][0], cos_pitch) + 0.0      # + 0.0 turns -0.0 into 0.0
-    if cos_pitch < 1e-9:                               # gimbal lock: put the whole turn in yaw
-        return 0.0, pitch, math.atan2(-m[0][1], m[1][1]) + 0.0
-    return math.atan2(m[2][1], m[2][2]) + 0.0, pitch, math.atan2(m[1][0], m[0][0]) + 0.0
-
-
-def _matmul(a, b):
-    return tuple(tuple(sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3))
-                 for i in range(3))
-
+# --- pose algebra -------------------------------------------------------------------------------
 
 def compose(parent: Pose, child: Pose) -> Pose:
     """The pose ``child`` (given in the ``parent`` frame) expressed in parent's own frame."""
-    r = _rotation(*parent[3:])
-    x, y, z = (parent[i] + sum(r[i][k] * child[k] for k in range(3)) for i in range(3))
-    return (x, y, z) + _rpy(_matmul(r, _rotation(*child[3:])))
+    r = matrix_from_rpy(*parent[3:])
+    x, y, z = (float(v) for v in np.asarray(parent[:3]) + r @ np.asarray(child[:3]))
+    return (x, y, z) + rpy_from_matrix(r @ matrix_from_rpy(*child[3:]))
 
 
 def _normal_pose(n: Sequence[float]) -> Pose:
@@ -321,7 +308,7 @@ def _normal_pose(n: Sequence[float]) -> Pose:
     m = ((c + ux * ux * t, ux * uy * t, uy * s),
          (ux * uy * t, c + uy * uy * t, -ux * s),
          (-uy * s, ux * s, c))
-    return (0.0, 0.0, 0.0) + _rpy(m)
+    return (0.0, 0.0, 0.0) + rpy_from_matrix(m)
 
 
 # --- polygon checks for polylines ---------------------------------------------------------------
@@ -366,9 +353,15 @@ def _clean_polygon(points: List[Tuple[float, float]]) -> Optional[Tuple[Tuple[fl
 class _Loader:
     """Walks one SDF document; every error names the file and the line of the element at fault."""
 
-    def __init__(self, path: str):
+    def __init__(self, path: str, base_dir: Optional[str] = None, depth: int = 0):
+        """``path`` names the document in errors; relative URIs are read from ``base_dir``
+        (default: the document's folder); ``depth`` counts the includes around it."""
         self.path = path
+        self.base_dir = base_dir if base_dir is not None else os.path.dirname(path)
+        self.depth = depth
         self.shapes: List[Shape] = []
+        self._links: List[Link] = []
+        self._joints: List[str] = []
 
     def fail(self, node: _Node, problem: str) -> WorldError:
         return WorldError("%s:%d: %s" % (self.path, node.line, problem))
@@ -453,31 +446,49 @@ class _Loader:
         return Model(name, pose, self.flag(node.child("static")), tuple(self._links),
                      tuple(self._joints))
 
-    def include(self, node: _Node, parent: Pose, scope: str) -> List[Model]:
-        """The models an <include> adds: model://ground_plane is built in, model://sun is
-        a light (nothing to add); other models must be written into the file."""
+    def include(self, node: _Node, parent: Pose, scope: str,
+                parent_static: bool = False) -> List[Model]:
+        """The model an <include> adds, read from the folder or file its <uri> names, with the
+        include's <name>, <pose> and <static> in place of the model's own. At the top level it
+        is a Model of the world; inside a model (``scope``) its links join that model. An SDF
+        of lights only (model://sun) adds nothing."""
         uri_node = node.child("uri")
         uri = uri_node.text if uri_node is not None else ""
-        if uri.rstrip("/") == "model://sun":
-            return []
-        if uri.rstrip("/") != "model://ground_plane":
-            raise self.fail(node, "<include> of %r is not supported: write the model into the "
-                                  "file with primitive shapes" % uri)
+        if not uri:
+            raise self.fail(node, "<include> needs a <uri>")
+        if self.depth >= MAX_INCLUDE_DEPTH:
+            raise self.fail(node, "<include> of %s: includes nested more than %d deep (does a "
+                                  "model include itself?)" % (uri, MAX_INCLUDE_DEPTH))
+        try:
+            found = resolve_uri(uri, self.base_dir)
+            sdf = model_sdf_file(found, parse_xml) if os.path.isdir(found) else found
+        except AssetError as err:
+            raise self.fail(node, "<include>: %s" % err) from None
+        root = _parse_xml(sdf)
+        models = root.all("model")
+        if len(models) != 1:
+            if not models and root.all("light"):
+                return []
+            raise self.fail(node, "<include> of %s: %s must hold one <model>, it holds %d"
+                            % (uri, sdf, len(models)))
+        model = models[0]
+        children = list(model.children)
+        for tag in ("pose", "static"):
+            override = node.child(tag)
+            if override is not None:
+                children = [c for c in children if c.tag != tag] + [override]
         name_node = node.child("name")
-        name = name_node.text if name_node is not None else "ground_plane"
-        pose = compose(parent, self.pose(node))
-        link = scope + name + "::link"
-        scoped = link + "::"
-        grey = GAZEBO_MATERIALS["Gazebo/Grey"]
-        size = (100.0, 100.0)
-        self.shapes.append(Shape(scoped + "collision", "plane", pose, size, rgba=grey,
-                                 twin=scoped + "visual", link=link))
-        self.shapes.append(Shape(scoped + "visual", "plane", pose, size, rgba=grey,
-                                 collision=False, twin=scoped + "collision", link=link))
-        if scope:   # nested in another model: its link belongs to that model
-            self._links.append(Link("link", link, pose))
-            return []
-        return [Model(name, pose, True, (Link("link", link, pose),))]
+        attrib = dict(model.attrib)
+        if name_node is not None and name_node.text:
+            attrib["name"] = name_node.text
+        model = _Node("model", attrib, model.line, model.text, children)
+        inner = _Loader(sdf, depth=self.depth + 1)
+        inner.shapes = self.shapes
+        if not scope:
+            return [inner.top_model(model, parent)]
+        inner._links, inner._joints = self._links, self._joints
+        inner.model(model, parent, scope, parent_static)
+        return []
 
     def model(self, node: _Node, parent: Pose, scope: str, parent_static: bool) -> str:
         name = self.name(node)
@@ -490,7 +501,7 @@ class _Loader:
             elif child.tag == "model":
                 self.model(child, pose, scope, static)
             elif child.tag == "include":
-                self.include(child, pose, scope)
+                self.include(child, pose, scope, static)
             elif child.tag == "joint":
                 self._joints.append(self.name(child))
         return name
@@ -578,13 +589,40 @@ class _Loader:
         elif geo.tag == "polyline":
             size = self.positive(geo, "height", 1, (1.0,))
             points = self.polygon(geo)
+        elif geo.tag == "mesh":
+            size, mesh = self.mesh(geo, name)
         else:
             raise self.fail(geo, "unsupported geometry <%s> in %s (supported: %s)"
                             % (geo.tag, name, ", ".join(KINDS)))
         collision = node.tag == "collision"
         rgba = DEFAULT_RGBA if collision else self.colour(node.child("material"))
         mu = self.friction(node) if collision else 1.0
-        return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu)
+        mesh_colours = geo.tag == "mesh" and not collision and node.child("material") is None
+        return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu,
+                     mesh=mesh if geo.tag == "mesh" else "", mesh_colours=mesh_colours)
+
+    def mesh(self, geo: _Node, name: str) -> Tuple[Tuple[float, ...], str]:
+        """(scale, absolute file) of a <mesh>, its file read once here so that a bad one is
+        refused with this line."""
+        from .mesh_file import load_mesh
+        uri_node = geo.child("uri")
+        if uri_node is None or not uri_node.text:
+            raise self.fail(geo, "<mesh> of %s needs a <uri>" % name)
+        if geo.child("submesh") is not None:
+            raise self.fail(geo.child("submesh"), "<submesh> is not supported: give the part "
+                                                  "its own mesh file")
+        scale = (1.0, 1.0, 1.0)
+        scale_node = geo.child("scale")
+        if scale_node is not None:
+            scale = self.floats(scale_node, 3)
+            if not all(v != 0 for v in scale):
+                raise self.fail(scale_node, "<scale> must not be zero, got %r" % scale_node.text)
+        try:
+            path = resolve_uri(uri_node.text, self.base_dir)
+            load_mesh(path, scale)
+        except UserError as err:
+            raise self.fail(uri_node, str(err)) from None
+        return scale, path
 
     def polygon(self, polyline: _Node) -> Tuple[Tuple[float, float], ...]:
         points = [self.floats(p, 2) for p in polyline.all("point")]
@@ -631,7 +669,8 @@ class _Loader:
             if s.collision:
                 source = by_name.get(twin) if twin else (visuals[0] if visuals else None)
                 rgba = source.rgba if source else DEFAULT_RGBA
-                s = replace(s, rgba=rgba, twin=twin)
+                own = bool(source and source.mesh_colours and source.mesh == s.mesh)
+                s = replace(s, rgba=rgba, twin=twin, mesh_colours=own)
             elif twin:
                 s = replace(s, twin=twin)
             out.append(s)
@@ -639,7 +678,7 @@ class _Loader:
 
 
 def _same_geometry(a: Shape, b: Shape, tol: float = 1e-9) -> bool:
-    return (a.kind == b.kind and len(a.points) == len(b.points)
+    return (a.kind == b.kind and a.mesh == b.mesh and len(a.points) == len(b.points)
             and all(abs(u - v) <= tol for u, v in zip(a.size + a.pose, b.size + b.pose))
             and all(abs(u - v) <= tol for p, q in zip(a.points, b.points) for u, v in zip(p, q)))
 
@@ -668,7 +707,7 @@ def load_model_xml(text, source: str, name: str, pose: Pose = IDENTITY) -> World
     ``name`` and placed with its own <pose> composed onto ``pose``; WorldError (one line with the
     line number) if it is not that."""
     root = parse_xml(text, source)
-    loader = _Loader(source)
+    loader = _Loader(source, base_dir=os.getcwd())
     if root.tag not in ("sdf", "gazebo"):
         raise loader.fail(root, "the root element is <%s>: an SDF model starts with <sdf>"
                           % root.tag)

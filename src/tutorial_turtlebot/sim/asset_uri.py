@@ -1,0 +1,185 @@
+"""Where Gazebo finds the files a world or a robot names: ``model://``, ``package://``, ``file://``.
+
+No ROS node and no pybullet here; ``package://`` asks rospkg (ROS_PACKAGE_PATH), as Gazebo's
+ROS plugins do.
+
+- ``model://NAME/rest`` is looked up in each folder of the model path, first match wins:
+  ``GAZEBO_MODEL_PATH`` (colon-separated), then the ``gazebo_model_path`` that ROS packages
+  export for gazebo_ros in their package.xml (``<export><gazebo_ros
+  gazebo_model_path="${prefix}/models"/></export>``), then ``~/.gazebo/models``, then this
+  package's own ``models/`` (which holds Gazebo's stock ``ground_plane`` and ``sun``).
+- A model folder holds ``model.config``, whose ``<sdf version="X">file</sdf>`` entries name one
+  SDF file per version; Gazebo 11 takes the highest version it reads (up to 1.7).
+- ``package://PKG/rest`` is PKG's folder from rospkg, else a model folder called PKG.
+- ``file://path`` and a bare path are absolute, or relative to the folder of the file that
+  names them.
+Every failure is an ``AssetError`` of one line naming the URI and where it was looked for.
+"""
+import os
+from typing import Callable, Iterable, List, Optional, Sequence, Tuple
+
+from ..errors import WorldError
+from .package_data import data_dir
+
+PACKAGE_MODELS = data_dir("models")
+USER_MODELS = os.path.join("~", ".gazebo", "models")
+MAX_SDF_VERSION = (1, 7)      # the newest SDF version Gazebo 11 (libsdformat 9) reads
+
+
+class AssetError(WorldError):
+    """A file named by a URI cannot be found or read; one line naming the URI and the search."""
+
+
+def _ros_exported_model_paths() -> List[str]:
+    """The ``gazebo_model_path`` folders that ROS packages on ROS_PACKAGE_PATH export for
+    gazebo_ros (what gazebo_ros' launch adds to GAZEBO_MODEL_PATH); [] without rospkg."""
+    try:
+        import rospkg
+    except ImportError:
+        return []
+    rospack = rospkg.RosPack()
+    paths = []
+    try:
+        packages = rospack.list()
+    except Exception:  # noqa: BLE001 - an unreadable ROS_PACKAGE_PATH adds nothing
+        return []
+    for package in sorted(packages):
+        try:
+            manifest = rospack.get_manifest(package)
+            prefix = rospack.get_path(package)
+        except Exception:  # noqa: BLE001 - a broken manifest of another package is skipped
+            continue
+        for export in manifest.exports:
+            if export.tag == "gazebo_ros" and export.get("gazebo_model_path"):
+                paths.append(export.get("gazebo_model_path").replace("${prefix}", prefix))
+    return paths
+
+
+class ModelPath:
+    """The folders ``model://`` searches, in Gazebo's order. The ROS packages' exports are read
+    only when a name is not found in GAZEBO_MODEL_PATH (they cost a scan of every manifest)."""
+
+    def __init__(self, environ=os.environ,
+                 ros_exports: Callable[[], List[str]] = _ros_exported_model_paths):
+        self.environ = environ
+        self._ros_exports = ros_exports
+        self._exported: Optional[List[str]] = None
+
+    def _groups(self) -> Iterable[Tuple[str, Sequence[str]]]:
+        yield "GAZEBO_MODEL_PATH", [p for p in self.environ.get("GAZEBO_MODEL_PATH", "")
+                                    .split(":") if p]
+        if self._exported is None:
+            self._exported = self._ros_exports()
+        yield "ROS packages' gazebo_model_path", self._exported
+        home = self.environ.get("HOME")
+        yield "~/.gazebo/models", ([USER_MODELS.replace("~", home, 1)] if home else [])
+        yield "tutorial_turtlebot/models", [PACKAGE_MODELS]
+
+    def describe(self) -> str:
+        """The searched folders for an error message: "GAZEBO_MODEL_PATH (a:b), ..."."""
+        parts = []
+        for label, folders in self._groups():
+            if label == "GAZEBO_MODEL_PATH" or folders:
+                parts.append("%s (%s)" % (label, ":".join(folders) or "unset"))
+        return ", ".join(parts)
+
+    def find(self, relative: str) -> Optional[str]:
+        """The first existing ``folder/relative`` over the model path; None if there is none."""
+        for _label, folders in self._groups():
+            for folder in folders:
+                candidate = os.path.join(os.path.expanduser(folder), relative)
+                if os.path.exists(candidate):
+                    return candidate
+        return None
+
+
+_DEFAULT = ModelPath()
+
+
+def split_uri(uri: str) -> Tuple[str, str]:
+    """("model" | "package" | "file" | "", the rest) of a URI; "" for a bare path."""
+    for scheme in ("model", "package", "file"):
+        prefix = scheme + "://"
+        if uri.startswith(prefix):
+            return scheme, uri[len(prefix):]
+    return "", uri
+
+
+def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None) -> str:
+    """The absolute path of the existing file or folder ``uri`` names; relative paths are
+    taken from ``base_dir``. AssetError (one line) if it cannot be found."""
+    model_path = model_path or _DEFAULT
+    uri = uri.strip()
+    scheme, rest = split_uri(uri)
+    if not rest:
+        raise AssetError("empty URI %r" % uri)
+    if "://" in rest and not scheme:
+        raise AssetError("URI %r: only model://, package://, file:// and paths are read"
+                         % uri)
+    if scheme == "model":
+        found = model_path.find(rest.strip("/"))
+        if found is None:
+            raise AssetError("%s not found: searched %s" % (uri, model_path.describe()))
+        return found
+    if scheme == "package":
+        package, _, inner = rest.partition("/")
+        root = _package_path(package)
+        if root is None:
+            found = model_path.find(rest.strip("/"))
+            if found is None:
+                raise AssetError("%s: no ROS package %r on ROS_PACKAGE_PATH (%s) and no model "
+                                 "folder of that name in %s"
+                                 % (uri, package, os.environ.get("ROS_PACKAGE_PATH", "unset"),
+                                    model_path.describe()))
+            return found
+        path = os.path.join(root, inner)
+    else:
+        path = os.path.join(base_dir, os.path.expanduser(rest))
+    path = os.path.normpath(path)
+    if not os.path.exists(path):
+        raise AssetError("%s not found (%s does not exist)" % (uri, path))
+    return path
+
+
+def _package_path(package: str) -> Optional[str]:
+    try:
+        import rospkg
+    except ImportError:
+        return None
+    try:
+        return rospkg.RosPack().get_path(package)
+    except rospkg.ResourceNotFound:
+        return None
+
+
+def _version(text: str) -> Tuple[int, ...]:
+    try:
+        return tuple(int(p) for p in text.strip().split("."))
+    except ValueError:
+        return ()
+
+
+def model_sdf_file(model_dir: str, parse_xml) -> str:
+    """The SDF file of the model folder ``model_dir``: of the ``<sdf version>`` entries of its
+    model.config, the highest version Gazebo 11 reads. ``parse_xml(data, source)`` is the
+    line-numbered XML reader. AssetError if there is none."""
+    config = os.path.join(model_dir, "model.config")
+    try:
+        with open(config, "rb") as f:
+            root = parse_xml(f.read(), config)
+    except OSError:
+        raise AssetError("%s has no model.config (a Gazebo model folder needs one)"
+                         % model_dir) from None
+    entries = []
+    for node in root.all("sdf"):
+        version = _version(node.attrib.get("version", ""))
+        if node.text and version and version <= MAX_SDF_VERSION:
+            entries.append((version, node.text))
+    if not entries:
+        raise AssetError("%s:%d: model.config names no <sdf version=\"1.x\">file</sdf> of "
+                         "version 1.7 or older" % (config, root.line))
+    _, name = max(entries)
+    path = os.path.join(model_dir, name)
+    if not os.path.isfile(path):
+        raise AssetError("%s: its model.config names %s, which does not exist" % (model_dir, name))
+    return path

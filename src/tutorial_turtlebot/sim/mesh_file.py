@@ -1,0 +1,373 @@
+"""Mesh files as Gazebo reads them: Collada (.dae), STL (binary or ASCII) and Wavefront OBJ.
+
+No ROS and no pybullet here. A file becomes a ``Mesh``: float64 vertices in metres in the mesh
+frame (the frame the SDF ``<mesh>``'s visual or collision pose places) and one ``MeshPart`` of
+triangles per material colour.
+
+- Collada: the ``<asset><unit meter="...">`` (0.0254 for inches) and every ``<node>`` transform
+  (matrix, translate, rotate, scale) down to each ``<instance_geometry>`` of the visual scene are
+  applied. ``<up_axis>`` is NOT: Gazebo uses the vertex data as written (a Y_UP file is rotated
+  by its user in SDF). A part's colour is its material's ``<diffuse><color>``; a textured
+  diffuse gives None. A file without ``<scene>`` gives its geometries as written. pycollada,
+  which reads it, applies neither unit nor up axis by itself (trimesh's Collada loader, not
+  used here, neither: it only records the unit).
+- STL (binary or ASCII, read by trimesh): metres as written, no colour.
+- OBJ (read by trimesh): each ``usemtl`` material's colour is its ``.mtl`` ``Kd`` (alpha from
+  ``d``), also where it has a texture; faces without material have None.
+Points shared by several triangles become one vertex. Then every vertex is multiplied by
+``scale`` (per axis; a mirroring scale keeps the faces counter-clockwise seen from outside).
+
+trimesh and pycollada are imported on first use, so worlds without meshes do not pay for them.
+A file is read once per process for the same (real path, mtime, size), whatever the scale.
+"""
+import math
+import os
+import tempfile
+import warnings
+from dataclasses import dataclass
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ..errors import UserError
+
+Rgba = Tuple[float, float, float, float]
+_FORMATS = {".dae": "Collada", ".stl": "STL", ".obj": "Wavefront OBJ"}
+SUFFIXES = tuple(_FORMATS)   # the file name endings read (any letter case)
+
+
+class MeshError(UserError):
+    """A mesh file that cannot be used; ``str(err)`` is one line naming the file and the problem."""
+
+
+@dataclass(frozen=True, eq=False)
+class MeshPart:
+    """The triangles of one material."""
+
+    faces: np.ndarray        # (K, 3) int indices into Mesh.vertices, counter-clockwise from outside
+    rgba: Optional[Rgba]     # the material's diffuse colour (0..1); None if the file gives none
+
+
+@dataclass(frozen=True, eq=False)
+class Mesh:
+    """A triangle mesh in metres in the mesh frame; loaded meshes are shared: read-only arrays."""
+
+    path: str
+    vertices: np.ndarray         # (N, 3) float64, m
+    parts: Tuple[MeshPart, ...]  # one per material colour, at least one
+
+    @property
+    def faces(self) -> np.ndarray:
+        """(K, 3) every part's faces, concatenated in part order."""
+        return np.concatenate([p.faces for p in self.parts])
+
+    @property
+    def bounds(self) -> Tuple[np.ndarray, np.ndarray]:
+        """(min xyz, max xyz) of the vertices the faces use, m."""
+        used = self.vertices[np.unique(self.faces)]
+        return used.min(axis=0), used.max(axis=0)
+
+
+_files: Dict[tuple, Mesh] = {}   # (real path, mtime, size) -> the file's mesh, unscaled
+_cache: Dict[tuple, Mesh] = {}   # the same + (scale,) -> the mesh load_mesh returns
+
+
+def load_mesh(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> Mesh:
+    """The mesh in file ``path`` multiplied by ``scale`` (x, y, z; finite, non-zero); MeshError
+    (one line) if the file is missing, of an unknown kind, malformed or holds no triangles."""
+    try:
+        factors = tuple(float(v) for v in scale)
+    except (TypeError, ValueError):
+        factors = ()
+    if len(factors) != 3 or not all(math.isfinite(v) and v != 0.0 for v in factors):
+        raise MeshError("%s: mesh scale must be three finite non-zero numbers, got %r"
+                        % (path, scale))
+    if not os.path.exists(path):
+        raise MeshError("%s: no such mesh file" % path)
+    if not os.path.isfile(path):
+        raise MeshError("%s: not a file (a mesh file is needed)" % path)
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix not in SUFFIXES:
+        raise MeshError("%s: unknown mesh format %r; the formats read are %s"
+                        % (path, suffix, ", ".join(SUFFIXES)))
+    stat = os.stat(path)
+    file_key = (os.path.realpath(path), stat.st_mtime_ns, stat.st_size)
+    if file_key + (factors,) not in _cache:
+        if file_key not in _files:
+            _files[file_key] = _read(path, suffix)
+        _cache[file_key + (factors,)] = _scaled(_files[file_key], factors)
+    return _cache[file_key + (factors,)]
+
+
+def cache_clear() -> None:
+    """Forget every mesh read (for tests)."""
+    _files.clear()
+    _cache.clear()
+
+
+def _read(path: str, suffix: str) -> Mesh:
+    """The file's mesh, unscaled, checked: finite vertices, triangles with indices in range."""
+    try:
+        with warnings.catch_warnings():   # pycollada's numpy.matrix, trimesh's notes
+            warnings.simplefilter("ignore")
+            if suffix == ".dae":
+                vertices, parts = _read_collada(path)
+            else:
+                vertices, parts = _read_trimesh(path, suffix[1:])
+    except Exception as err:   # trimesh, pycollada, lxml, numpy: any failure is a bad file
+        text = " ".join(str(err).split()) or type(err).__name__
+        raise MeshError("%s: cannot read this %s file: %s"
+                        % (path, _FORMATS[suffix], text[:200])) from None
+    parts = [(np.asarray(f, dtype=np.int64).reshape(-1, 3), rgba) for f, rgba in parts]
+    parts = [(f, rgba) for f, rgba in parts if len(f)]
+    if not parts:
+        raise MeshError("%s: the file holds no triangles" % path)
+    vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
+    if not np.all(np.isfinite(vertices)):
+        raise MeshError("%s: the file has vertex coordinates that are not numbers" % path)
+    if any(f.min() < 0 or f.max() >= len(vertices) for f, _ in parts):
+        raise MeshError("%s: a triangle names a vertex the file does not have" % path)
+    # One vertex per distinct point (STL and Collada repeat them); no triangle repeats one.
+    vertices, inverse = np.unique(vertices, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    parts = [(inverse[f], rgba) for f, rgba in parts]
+    parts = [(f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 2] != f[:, 0])], rgba)
+             for f, rgba in parts]
+    parts = [(f, rgba) for f, rgba in parts if len(f)]
+    if not parts:
+        raise MeshError("%s: the file holds no triangles (only degenerate ones)" % path)
+    return Mesh(path, vertices, tuple(MeshPart(f, rgba) for f, rgba in _merge_colours(parts)))
+
+
+def _merge_colours(parts):
+    """One (faces, rgba) per distinct colour, in order of first appearance."""
+    merged: Dict[Optional[Rgba], List[np.ndarray]] = {}
+    for faces, rgba in parts:
+        merged.setdefault(rgba, []).append(faces)
+    return [(np.concatenate(f), rgba) for rgba, f in merged.items()]
+
+
+def _scaled(mesh: Mesh, factors: Tuple[float, float, float]) -> Mesh:
+    """``mesh`` scaled per axis, its arrays read-only; a mirror (odd number of negative factors)
+    reverses every triangle so that faces stay counter-clockwise seen from outside."""
+    vertices = mesh.vertices * np.array(factors)
+    vertices.setflags(write=False)
+    mirror = (factors[0] < 0) ^ (factors[1] < 0) ^ (factors[2] < 0)
+    parts = []
+    for part in mesh.parts:
+        faces = np.ascontiguousarray(part.faces[:, ::-1] if mirror else part.faces)
+        faces.setflags(write=False)
+        parts.append(MeshPart(faces, part.rgba))
+    return Mesh(mesh.path, vertices, tuple(parts))
+
+
+def _read_collada(path: str):
+    """(vertices, [(faces, rgba)]) of a Collada file: unit and node transforms applied, not the
+    up axis."""
+    import collada
+    doc = collada.Collada(path, ignore=[collada.common.DaeUnsupportedError,
+                                        collada.common.DaeBrokenRefError])
+    if doc.scene is not None:
+        geometries = list(doc.scene.objects("geometry"))
+    else:   # no visual scene: every geometry as written
+        geometries = [g.bind(np.identity(4), {}) for g in doc.geometries]
+    unit = doc.assetInfo.unitmeter or 1.0
+    chunks, parts, count = [], [], 0
+    for geometry in geometries:
+        for primitive in geometry.primitives():
+            if hasattr(primitive, "triangleset"):       # polylist, polygons
+                primitive = primitive.triangleset()
+            if not hasattr(primitive, "vertex_index") or primitive.vertex is None \
+                    or primitive.vertex_index is None or not hasattr(primitive, "ntriangles"):
+                continue                                # lines, or no data
+            chunks.append(np.asarray(primitive.vertex, dtype=np.float64).reshape(-1, 3))
+            parts.append((np.asarray(primitive.vertex_index) + count,
+                          _collada_colour(primitive.material)))
+            count += len(chunks[-1])
+    vertices = np.concatenate(chunks) * unit if chunks else np.zeros((0, 3))
+    return vertices, parts
+
+
+def _collada_colour(material) -> Optional[Rgba]:
+    """A Collada material's diffuse colour; None without material or with a texture."""
+    diffuse = getattr(getattr(material, "effect", None), "diffuse", None)
+    if not isinstance(diffuse, tuple) or len(diffuse) not in (3, 4):
+        return None
+    return tuple(float(v) for v in diffuse) + ((1.0,) if len(diffuse) == 3 else ())
+
+
+def _read_trimesh(path: str, file_type: str):
+    """(vertices, [(faces, rgba)]) of an STL or OBJ file read by trimesh, as written."""
+    import trimesh
+    scene = trimesh.load(path, file_type=file_type, force="scene", process=False)
+    chunks, parts, count = [], [], 0
+    for node in scene.graph.nodes_geometry:
+        transform, name = scene.graph[node]
+        geometry = scene.geometry[name]
+        if not hasattr(geometry, "faces") or len(geometry.faces) == 0:
+            continue
+        vertices = np.asarray(geometry.vertices, dtype=np.float64)
+        chunks.append(vertices @ transform[:3, :3].T + transform[:3, 3])
+        rgba = _obj_colour(geometry) if file_type == "obj" else None
+        parts.append((np.asarray(geometry.faces) + count, rgba))
+        count += len(vertices)
+    return (np.concatenate(chunks) if chunks else np.zeros((0, 3))), parts
+
+
+def _obj_colour(geometry) -> Optional[Rgba]:
+    """The ``Kd`` (and ``d``) of an OBJ part's .mtl material, exactly as written; None if none."""
+    material = getattr(getattr(geometry, "visual", None), "material", None)
+    kwargs = getattr(material, "kwargs", None) or {}
+    kd = kwargs.get("kd")
+    if kd is None:
+        return None
+    kd = [float(kd)] * 3 if np.isscalar(kd) else [float(v) for v in kd][:3]
+    if len(kd) != 3:
+        return None
+    try:
+        alpha = float(np.ravel(kwargs.get("d", [1.0]))[0])
+    except (TypeError, ValueError, IndexError):
+        alpha = 1.0
+    return (kd[0], kd[1], kd[2], alpha)
+
+
+def convex_hull_vertices(mesh: Mesh) -> np.ndarray:
+    """(H, 3) the corner points of the convex hull of the vertices the faces use, m (a flat mesh:
+    the corners of its outline; a line: its two ends)."""
+    points = np.unique(mesh.vertices[np.unique(mesh.faces)], axis=0)
+    centre = points.mean(axis=0)
+    _, sizes, axes = np.linalg.svd(points - centre, full_matrices=False)
+    rank = int(np.sum(sizes > 1e-9 * sizes[0])) if len(sizes) and sizes[0] > 0 else 0
+    if rank == 3 and len(points) >= 4:
+        return _hull_3d(points)
+    if rank == 2:
+        flat = (points - centre) @ axes[:2].T
+        return points[_hull_2d(flat)]
+    if rank == 1:
+        along = (points - centre) @ axes[0]
+        return points[[int(np.argmin(along)), int(np.argmax(along))]]
+    return points[:1]
+
+
+def _hull_2d(points: np.ndarray) -> List[int]:
+    """Indices of the corners of the convex hull of 2-D points (monotone chain, collinear points
+    dropped), counter-clockwise."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+
+    def cross(o, a, b):
+        return ((points[a][0] - points[o][0]) * (points[b][1] - points[o][1])
+                - (points[a][1] - points[o][1]) * (points[b][0] - points[o][0]))
+
+    def chain(indices):
+        out: List[int] = []
+        for i in indices:
+            while len(out) >= 2 and cross(out[-2], out[-1], i) <= 0:
+                out.pop()
+            out.append(i)
+        return out
+
+    lower, upper = chain(order), chain(reversed(order))
+    return lower[:-1] + upper[:-1]
+
+
+def _hull_3d(points: np.ndarray) -> np.ndarray:
+    """Corners of the convex hull of points that span 3-D (quickhull with conflict lists), then
+    only the hull vertices whose face normals span 3-D: a point on an edge or a face is no corner.
+    """
+    eps = 1e-9 * float(np.ptp(points, axis=0).max())
+    faces: Dict[int, Tuple[int, int, int]] = {}
+    planes: Dict[int, Tuple[np.ndarray, float]] = {}   # face -> (unit outward normal, offset)
+    edges: Dict[Tuple[int, int], int] = {}             # directed edge -> its face
+    conflicts: Dict[int, np.ndarray] = {}              # face -> the points outside it
+
+    def add_faces(corners):
+        """Add faces (i, j, k), counter-clockwise from outside; returns their keys."""
+        p, q, r = (points[[f[i] for f in corners]] for i in range(3))
+        normals = np.cross(q - p, r - p)
+        normals /= np.linalg.norm(normals, axis=1)[:, None]
+        keys = list(range(len(planes), len(planes) + len(corners)))
+        for key, corner, normal, origin in zip(keys, corners, normals, p):
+            faces[key], planes[key] = corner, (normal, float(normal @ origin))
+            for i in range(3):
+                edges[corner[i], corner[(i + 1) % 3]] = key
+        return keys
+
+    def assign(candidates, keys):
+        if not len(candidates) or not keys:
+            return
+        normals = np.array([planes[k][0] for k in keys])
+        offsets = np.array([planes[k][1] for k in keys])
+        distance = points[candidates] @ normals.T - offsets
+        best = np.argmax(distance, axis=1)
+        outside = distance[np.arange(len(candidates)), best] > eps
+        for j, key in enumerate(keys):
+            conflicts[key] = candidates[outside & (best == j)]
+
+    # The start: a tetrahedron of far-apart points, counter-clockwise from outside.
+    a = int(np.argmax(points @ np.array([1.0, 0.318309886, 0.141421356])))
+    b = int(np.argmax(np.linalg.norm(points - points[a], axis=1)))
+    c = int(np.argmax(np.linalg.norm(np.cross(points - points[a], points[b] - points[a]), axis=1)))
+    normal = np.cross(points[b] - points[a], points[c] - points[a])
+    d = int(np.argmax(np.abs((points - points[a]) @ normal)))
+    if (points[d] - points[a]) @ normal > 0:
+        b, c = c, b
+    start = add_faces([(a, b, c), (a, d, b), (b, d, c), (c, d, a)])
+    assign(np.arange(len(points)), start)
+    todo = list(start)
+    while todo:
+        key = todo.pop()
+        if key not in faces or not len(conflicts.get(key, ())):
+            continue
+        eye = int(conflicts[key][np.argmax(points[conflicts[key]] @ planes[key][0])])
+        visible, queue = {key}, [key]
+        while queue:                      # the faces the eye sees: a connected cap
+            corner = faces[queue.pop()]
+            for i in range(3):
+                other = edges[corner[(i + 1) % 3], corner[i]]
+                if other not in visible and points[eye] @ planes[other][0] - planes[other][1] > eps:
+                    visible.add(other)
+                    queue.append(other)
+        horizon = [(f[i], f[(i + 1) % 3]) for k in visible for f in [faces[k]] for i in range(3)
+                   if edges[f[(i + 1) % 3], f[i]] not in visible]
+        orphans = np.concatenate([conflicts.pop(k, np.zeros(0, dtype=np.int64)) for k in visible])
+        for k in visible:
+            corner = faces.pop(k)
+            for i in range(3):
+                del edges[corner[i], corner[(i + 1) % 3]]
+        new = add_faces([(p, q, eye) for p, q in horizon])
+        assign(orphans[orphans != eye], new)
+        todo.extend(new)
+    around: Dict[int, List[np.ndarray]] = {}
+    for key, corner in faces.items():
+        for vertex in corner:
+            around.setdefault(vertex, []).append(planes[key][0])
+    return points[[v for v in sorted(around)
+                   if np.linalg.matrix_rank(np.array(around[v]), tol=1e-7) == 3]]
+
+
+def write_obj_parts(mesh: Mesh, directory: str) -> List[Tuple[str, Optional[Rgba]]]:
+    """One Wavefront file per part in ``directory``: (path, the part's rgba). Flat shaded: one
+    normal per face (``vn`` and ``f a//n b//n c//n``), so that pybullet's EGL and TinyRenderer
+    renderers both light it. Only the part's own vertices are written, in metres."""
+    stem = os.path.splitext(os.path.basename(mesh.path))[0] or "mesh"
+    written = []
+    for number, part in enumerate(mesh.parts):
+        used, faces = np.unique(part.faces, return_inverse=True)
+        faces = faces.reshape(-1, 3)
+        vertices = mesh.vertices[used]
+        corners = vertices[faces]
+        normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        lengths = np.linalg.norm(normals, axis=1)
+        normals = np.where(lengths[:, None] > 0, normals / np.maximum(lengths, 1e-300)[:, None],
+                           np.array([0.0, 0.0, 1.0]))
+        lines = ["# %s part %d, metres, flat shaded" % (os.path.basename(mesh.path), number)]
+        lines += ["v %.9g %.9g %.9g" % tuple(v) for v in vertices]
+        lines += ["vn %.6g %.6g %.6g" % tuple(n) for n in normals]
+        lines += ["f %d//%d %d//%d %d//%d" % (a + 1, k + 1, b + 1, k + 1, c + 1, k + 1)
+                  for k, (a, b, c) in enumerate(faces)]
+        fd, path = tempfile.mkstemp(suffix=".obj", prefix="%s_part%d_" % (stem, number),
+                                    dir=directory)
+        with os.fdopen(fd, "w") as f:
+            f.write("\n".join(lines) + "\n")
+        written.append((path, part.rgba))
+    return written

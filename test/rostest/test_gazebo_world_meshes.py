@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""rostest node: the sim in turtlebot3_world loaded from Gazebo's own files (model:// includes,
+Collada meshes). Its models are the included ones; its scan matches, ray by ray, the scan of the
+built-in primitive copy of the world from the same pose; driven backwards at full speed into
+the mesh wall, the robot stops at the wall."""
+import unittest
+
+import numpy as np
+import rospy
+import rostest
+from gazebo_msgs.srv import GetWorldProperties
+from sensor_msgs.msg import LaserScan
+
+from sim_test_support import WAIT, Driver, arena_wall_distance, box_outside_arena, yaw_of
+from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+
+
+def reference_scan(x, y, yaw):
+    """The built-in primitive turtlebot3_world's scan from the same pose."""
+    sim = Simulation(SimConfig(world="turtlebot3_world", model="burger", x=x, y=y, yaw=yaw))
+    try:
+        for _ in range(200):
+            sim.step()
+        return np.array(sim.scan(), dtype=float)
+    finally:
+        sim.close()
+
+
+class GazeboWorldMeshesTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_gazebo_world_meshes")
+        cls.drive = Driver()
+
+    def test_1_the_models_are_the_included_ones(self):
+        rospy.wait_for_service("/gazebo/get_world_properties", WAIT)
+        names = rospy.ServiceProxy("/gazebo/get_world_properties", GetWorldProperties)().model_names
+        self.assertEqual(names, ["ground_plane", "turtlebot3_world", "turtlebot3_burger"])
+
+    def test_2_the_scan_sees_the_meshes_where_they_are(self):
+        start = self.drive.odom.latest(WAIT)
+        self.assertIsNotNone(start)
+        scan = rospy.wait_for_message("/scan", LaserScan, WAIT)
+        pose = start.pose.pose
+        expected = reference_scan(pose.position.x, pose.position.y, yaw_of(pose.orientation))
+        ranges = np.array(scan.ranges, dtype=float)
+        both = np.isfinite(ranges) & np.isfinite(expected)
+        self.assertGreater(both.sum(), 300, "most rays hit something in both worlds")
+        error = np.abs(ranges[both] - expected[both])
+        self.assertLess(np.median(error), 0.03, "median range error %.3f m" % np.median(error))
+        self.assertLess(np.percentile(error, 95), 0.08)
+        # straight behind: the arena wall, 0.64 m away at this pose
+        behind = ranges[len(ranges) // 2]
+        self.assertAlmostEqual(behind, arena_wall_distance((pose.position.x, pose.position.y),
+                                                           180.0), delta=0.05)
+
+    def test_3_backwards_into_the_mesh_wall_stops_at_it(self):
+        """As sim_wall.test does in the built-in world: the robot reaches the wall and slides
+        along it, never through it."""
+        start = self.drive.odom.latest(WAIT)
+        self.drive.send(-1.0, 0.0)  # clamped to the Burger's 0.22 m/s
+        end = self.drive.odom.after(start.header.stamp + rospy.Duration(8.0), 120.0)
+        self.drive.send(0.0, 0.0)
+        self.assertIsNotNone(end)
+        pose = end.pose.pose
+        worst = box_outside_arena(pose.position.x, pose.position.y, yaw_of(pose.orientation))
+        self.assertLess(worst, 0.01, "through the mesh wall by %.3f m" % worst)
+        self.assertGreater(worst, -0.03, "stopped %.3f m short of the mesh wall" % -worst)
+        self.assertLess(abs(pose.position.z), 0.05, "tipped or climbed the wall")
+
+if __name__ == "__main__":
+    rostest.rosrun("tutorial_turtlebot", "gazebo_world_meshes", GazeboWorldMeshesTest)

@@ -1,0 +1,112 @@
+"""<include> of model folders, as Gazebo resolves them (world_sdf with asset_uri): no pybullet."""
+import math
+
+import pytest
+
+from tutorial_turtlebot.errors import WorldError
+from tutorial_turtlebot.sim.world_sdf import MAX_INCLUDE_DEPTH, load_world
+
+BOX = ('<link name="l"><pose>0 0 0.5 0 0 0</pose><collision name="c"><geometry><box>'
+       '<size>1 1 1</size></box></geometry></collision></link>')
+
+
+def model_folder(root, name, body, pose="1 2 0 0 0 0", static="false"):
+    """A Gazebo model folder root/name: model.config and a model.sdf holding ``body``."""
+    folder = root / name
+    folder.mkdir(parents=True)
+    (folder / "model.config").write_text(
+        '<?xml version="1.0"?><model><name>%s</name><sdf version="1.6">model.sdf</sdf></model>'
+        % name)
+    (folder / "model.sdf").write_text(
+        '<?xml version="1.0"?>\n<sdf version="1.6">\n<model name="%s">\n<pose>%s</pose>\n'
+        '<static>%s</static>\n%s\n</model>\n</sdf>\n' % (name, pose, static, body))
+    return folder
+
+
+def world_file(tmp_path, body):
+    path = tmp_path / "test.world"
+    path.write_text('<?xml version="1.0"?>\n<sdf version="1.6">\n<world name="w">\n%s\n'
+                    '</world>\n</sdf>\n' % body)
+    return str(path)
+
+
+@pytest.fixture
+def models(tmp_path, monkeypatch):
+    """A model folder on GAZEBO_MODEL_PATH."""
+    root = tmp_path / "models"
+    monkeypatch.setenv("GAZEBO_MODEL_PATH", str(root))
+    return root
+
+
+def fault(path):
+    with pytest.raises(WorldError) as err:
+        load_world(path)
+    message = str(err.value)
+    assert "\n" not in message
+    return message
+
+
+def test_an_include_is_the_model_of_its_folder(tmp_path, models):
+    model_folder(models, "crate", BOX)
+    world = load_world(world_file(tmp_path, '<include><uri>model://crate</uri></include>'))
+    assert world.models == ("crate",)
+    crate = world.model("crate")
+    assert crate.pose == (1.0, 2.0, 0.0, 0.0, 0.0, 0.0) and not crate.static
+    assert [link.scoped for link in crate.links] == ["crate::l"]
+    assert world.shape("crate::l::c").pose[:3] == (1.0, 2.0, 0.5)
+
+
+def test_include_overrides_name_pose_and_static(tmp_path, models):
+    model_folder(models, "crate", BOX)
+    world = load_world(world_file(tmp_path, '''
+      <include><uri>model://crate</uri></include>
+      <include><uri>model://crate</uri><name>crate_2</name>
+        <pose>5 0 0 0 0 1.5707963267948966</pose><static>true</static></include>'''))
+    assert world.models == ("crate", "crate_2")
+    second = world.model("crate_2")
+    assert second.static and second.pose[:2] == (5.0, 0.0)
+    assert math.isclose(second.pose[5], math.pi / 2)
+    shape = world.shape("crate_2::l::c")
+    assert shape.static and shape.pose[:3] == (5.0, 0.0, 0.5)
+    assert not world.shape("crate::l::c").static
+
+
+def test_includes_nest_inside_models_and_other_includes(tmp_path, models):
+    model_folder(models, "leg", BOX, pose="0 0 0 0 0 0")
+    model_folder(models, "table", '<include><uri>model://leg</uri><name>front</name>'
+                                  '<pose>0.5 0 0 0 0 0</pose></include>', pose="10 0 0 0 0 0")
+    world = load_world(world_file(tmp_path, '''
+      <model name="room"><static>true</static>
+        <include><uri>model://table</uri></include></model>'''))
+    assert world.models == ("room",)
+    assert [link.scoped for link in world.model("room").links] == ["room::table::front::l"]
+    shape = world.shape("room::table::front::l::c")
+    assert shape.pose[:3] == (10.5, 0.0, 0.5) and shape.static   # static from the outer model
+
+
+def test_ground_plane_and_sun_need_no_model_path(tmp_path, monkeypatch):
+    monkeypatch.delenv("GAZEBO_MODEL_PATH", raising=False)
+    world = load_world(world_file(tmp_path, '<include><uri>model://sun</uri></include>'
+                                            '<include><uri>model://ground_plane</uri></include>'))
+    assert world.models == ("ground_plane",)
+    plane = world.shape("ground_plane::link::collision")
+    assert plane.kind == "plane" and plane.size == (100.0, 100.0) and plane.static
+
+
+def test_a_missing_include_is_one_line_naming_the_uri_and_the_search(tmp_path, models):
+    message = fault(world_file(tmp_path, '<include><uri>model://cafe_table</uri></include>'))
+    assert "test.world:4: <include>: model://cafe_table not found: searched" in message
+    assert "GAZEBO_MODEL_PATH (%s)" % models in message
+
+
+def test_an_include_of_itself_is_refused(tmp_path, models):
+    model_folder(models, "loop", '<include><uri>model://loop</uri></include>')
+    message = fault(world_file(tmp_path, '<include><uri>model://loop</uri></include>'))
+    assert "nested more than %d deep" % MAX_INCLUDE_DEPTH in message
+
+
+def test_errors_inside_an_included_model_name_its_file(tmp_path, models):
+    model_folder(models, "bad", '<link name="l"><collision name="c"><geometry><box><size>1 x 1'
+                                '</size></box></geometry></collision></link>')
+    message = fault(world_file(tmp_path, '<include><uri>model://bad</uri></include>'))
+    assert "bad/model.sdf:6: <size> needs 3 numbers" in message
