@@ -151,3 +151,22 @@ def test_a_broken_mesh_is_one_line_naming_the_file_and_the_line(tmp_path):
         load_world(path)
     message = str(err.value)
     assert "\n" not in message and "test.world:6:" in message and "bad.stl" in message
+
+
+def test_the_camera_draws_the_meshes_as_the_primitive_copy_looks():
+    """A Waffle Pi's camera at the same pose: the Collada walls and hexagons, drawn in their
+    SDF materials' colours, give the picture of the built-in world (mean difference < 1 level,
+    while a turn of 0.05 rad changes it by far more)."""
+    images = []
+    for world, yaw in ((MESH_WORLD, 0.3), ("turtlebot3_world", 0.3), ("turtlebot3_world", 0.35)):
+        sim = Simulation(SimConfig(world=world, model="waffle_pi", x=SPAWN[0], y=SPAWN[1],
+                                   yaw=yaw))
+        try:
+            for _ in range(100):
+                sim.step()
+            images.append(sim.camera_image()[0].astype(float))
+        finally:
+            sim.close()
+    mesh, primitive, turned = images
+    assert np.abs(mesh - primitive).mean() < 1.0
+    assert np.abs(turned - primitive).mean() > 5.0
