@@ -85,7 +85,7 @@ NOETIC_ROS_APT = (
     "ros-noetic-message-generation", "ros-noetic-message-runtime", "ros-noetic-genmsg",
     "ros-noetic-genpy", "ros-noetic-tf2-ros", "ros-noetic-robot-state-publisher",
     "ros-noetic-image-view", "ros-noetic-rviz", "ros-noetic-dynamic-reconfigure",
-    "ros-noetic-rqt-graph",
+    "ros-noetic-rqt-graph", "ros-noetic-xacro",
 )
 
 # Installed where the distribution has them, skipped with a line where it does not.

@@ -213,7 +213,7 @@ class WorldApiTest(unittest.TestCase):
              "allowed"),
             (gz.spawn_sdf_model(model_name="bad", model_xml=BOX.replace("<box><size>0.15 0.15 0.15"
                                 "</size></box>", "<mesh><uri>x.dae</uri></mesh>", 1)),
-             "unsupported geometry <mesh>"),
+             "x.dae not found"),
             (gz.spawn_urdf_model(model_name="bad", model_xml=BOX), "needs a <robot>"),
             (gz.spawn_sdf_model(model_name="bad", model_xml=BOX,
                                 initial_pose=pose(nan, 0.0)), "NaN"),

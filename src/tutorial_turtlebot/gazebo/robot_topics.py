@@ -51,6 +51,8 @@ class RobotTopics:
         self.pubs = {}
         self.publishers = {}   # what the robot's schedules name (SimRobot.due), by name
         self.services = []
+        # sensor readings published, for ~performance_metrics (world_api)
+        self.sensor_updates = {"scan": 0, "imu": 0, "camera": 0}
         drive, laser, imu = robot.drive_plugin, robot.laser_sensor, robot.imu_plugin
         if "odom" in robot.schedules:
             self.pubs["odom"] = make_publisher(self.topic(drive.odometry_topic, drive), Odometry)
@@ -70,7 +72,9 @@ class RobotTopics:
         self.camera = None
         if robot.camera is not None:
             self.camera = CameraPublisher(robot, make_publisher, self.namespace, self.prefix)
-            self.publishers["camera"] = self.camera.publish
+            self.publishers["camera"] = self._publish_camera
+            self._frame_pubs = (self.camera.image_pubs + self.camera.jpeg_pubs
+                                + self.camera.depth_pubs + self.camera.points_pubs)
         self._build_messages()
         self.subscriber = (rospy.Subscriber(self.topic(drive.command_topic, drive), Twist,
                                             self._on_cmd_vel, queue_size=1)
@@ -173,6 +177,7 @@ class RobotTopics:
         msg.header.stamp = stamp
         msg.ranges = self.robot.scan().tolist()
         self.pubs["scan"].publish(msg)
+        self.sensor_updates["scan"] += 1
 
     def _publish_imu(self, stamp) -> None:
         if self.pubs["imu"].get_num_connections() == 0:
@@ -185,6 +190,13 @@ class RobotTopics:
         w.x, w.y, w.z = state.angular_velocity
         a.x, a.y, a.z = state.linear_acceleration
         self.pubs["imu"].publish(msg)
+        self.sensor_updates["imu"] += 1
+
+    def _publish_camera(self, stamp) -> None:
+        """A camera tick; a frame is rendered (and counted) only for a subscriber."""
+        if any(pub.get_num_connections() > 0 for pub in self._frame_pubs):
+            self.sensor_updates["camera"] += 1
+        self.camera.publish(stamp)
 
     # --- input -----------------------------------------------------------------------------------
 

@@ -17,8 +17,10 @@ Optional:
         plugins (its topics and frames).
     -unpause: call unpause_physics after the spawn.
     -wait MODEL: first wait until MODEL is listed in model_states (published while physics runs).
-    -J JOINT POSITION (repeatable): gazebo_ros sets it with set_model_configuration, which this
-        simulator does not have: one warning, and the spawn goes on.
+    -J JOINT POSITION (repeatable): after the spawn, ``<gazebo_namespace>/set_model_configuration``
+        puts these joints there (rad or m; urdf_param_name is the -param name, as gazebo_ros
+        sends it). gazebo_ros first sleeps 1 s against a race with its spawn queue; here the
+        model exists once the spawn has answered, so there is no sleep.
     -package_to_model: accepted (gazebo_ros rewrites mesh package:// URIs for Gazebo's model
         path; meaningless here).
     -b: bond: stay until Ctrl-C (SIGINT) or SIGTERM, then delete the model.
@@ -28,11 +30,12 @@ roslaunch's ``__name:=`` and ``__log:=`` and any ``from:=to`` remapping are not 
 In order: the file or stdin is read and its XML checked before any contact with ROS; the node
 ``spawn_model`` (anonymous) starts; ``-param`` is read and checked; ``-wait``; it waits for
 ``<gazebo_namespace>/spawn_{urdf,sdf}_model`` (a line every few seconds while it waits), calls
-it, logs the status; ``-J``; ``-unpause``; ``-b``. Every wait is on the wall clock (the sim may
-be paused) and ends at Ctrl-C.
+it, logs the status; ``-J`` (set_model_configuration, its status logged); ``-unpause``; ``-b``.
+Every wait is on the wall clock (the sim may be paused) and ends at Ctrl-C.
 
-Exit status: 0 spawned (with -b: spawned, and deleted at the end); 1 the spawn or a step before
-it failed (one line says why: the service's status_message, a missing file, bad XML, ...);
+Exit status: 0 spawned (with -b: spawned, and deleted at the end); 1 the spawn, a step before
+it or -J failed (one line says why: the service's status_message, a missing file, bad XML, ...;
+a model whose -J failed stays spawned);
 2 a bad command line (one line: what is wrong, then the usage). gazebo_ros's script exits 2 on
 a bad command line too (argparse), 1 when the spawn fails.
 """
@@ -119,7 +122,8 @@ def parse_args(args: List[str], default_robot_namespace: str = "/") -> argparse.
                             help="initial %s, default 0" % what)
     parser.add_argument("-J", dest="joints", default=[], action="append", nargs=2,
                         metavar=("JOINT", "POSITION"),
-                        help="a joint's initial position (not available here: warned about)")
+                        help="a joint's initial position (rad or m), set after the spawn "
+                             "with set_model_configuration")
     parser.add_argument("-package_to_model", action="store_true",
                         help="accepted for gazebo_ros's sake (meaningless here)")
     parser.add_argument("-b", dest="bond", action="store_true",
@@ -332,6 +336,25 @@ class Spawner:
             raise UserError("Spawn failed: %s" % resp.status_message)
         rospy.loginfo("Spawn status: %s" % resp.status_message)
 
+    def set_joints(self) -> None:
+        """-J: set_model_configuration of the spawned model; UserError if it fails."""
+        from gazebo_msgs.srv import SetModelConfiguration
+        args = self.args
+        name = service_name(args.gazebo_namespace, "set_model_configuration")
+        self.wait_for_service(name)
+        rospy.loginfo("Setting joints of %s: %s" % (args.model, ", ".join(
+            "%s %g" % joint for joint in args.joints)))
+        try:
+            resp = rospy.ServiceProxy(name, SetModelConfiguration)(
+                model_name=args.model, urdf_param_name=args.param or "",
+                joint_names=[joint for joint, _ in args.joints],
+                joint_positions=[position for _, position in args.joints])
+        except (rospy.ServiceException, rospy.ROSException) as err:
+            raise UserError("Service call %s failed: %s" % (name, err)) from None
+        if not resp.success:
+            raise UserError("Set model configuration failed: %s" % resp.status_message)
+        rospy.loginfo("Set model configuration status: %s" % resp.status_message)
+
     def unpause(self) -> None:
         name = service_name(self.args.gazebo_namespace, "unpause_physics")
         rospy.loginfo("Unpausing physics")
@@ -373,11 +396,7 @@ class Spawner:
                 self.wait_for_model(args.wait)
             self.spawn()
             if args.joints:
-                rospy.logwarn("-J %s ignored: %s does not exist here (the simulator cannot set "
-                              "joint positions); the joints start at 0"
-                              % (" ".join("%s %g" % j for j in args.joints),
-                                 service_name(args.gazebo_namespace,
-                                              "set_model_configuration")))
+                self.set_joints()
             if args.unpause:
                 self.unpause()
         except Interrupted:

@@ -1,39 +1,65 @@
 """Gazebo's world API on the ``/gazebo`` node: the names, types and answers of
-gazebo_ros_api_plugin (gazebo_api.md 2), over sim/world_control.
+gazebo_ros_api_plugin, over sim/world_control.
 
-Publications (only while subscribed; every ``~model_states_rate`` Hz of sim time):
-  ~model_states (gazebo_msgs/ModelStates)  every model: world file, robot, spawned (in order)
-  ~link_states (gazebo_msgs/LinkStates)    every link, scoped "model::link"
+Publications (only while subscribed):
+  ~model_states (gazebo_msgs/ModelStates)  every model: world file, robot, spawned (in order),
+                                           every ``~model_states_rate`` Hz of sim time
+  ~link_states (gazebo_msgs/LinkStates)    every link, scoped "model::link", as model_states
+  ~performance_metrics (gazebo_msgs/PerformanceMetrics)  about once a wall second: stamp = sim
+      time, real_time_factor over the last period, and per sensor of every robot (laser, IMU,
+      camera; name "world::model::link::sensor", the link being the one the sensor's link is
+      lumped into, the IMU named by its gazebo_ros_imu plugin) sim_update_rate (readings per
+      sim second), real_update_rate (per wall second) and fps (camera frames per wall second;
+      -1 for other sensors, as gazebo_ros). A reading nobody subscribes to is not even made,
+      so such a sensor reports 0.
 Subscriptions (the services' topic twins; the answer is dropped):
   ~set_model_state (gazebo_msgs/ModelState), ~set_link_state (gazebo_msgs/LinkState)
 Services:
   ~get_model_state, ~set_model_state, ~get_link_state, ~set_link_state, ~get_world_properties,
   ~get_model_properties, ~spawn_sdf_model, ~spawn_urdf_model, ~delete_model,
-  ~get_physics_properties, ~set_physics_properties; dynamic_reconfigure of the physics
-  (gazebo/physics_config) on ``~``.
+  ~get_physics_properties, ~set_physics_properties, ~apply_body_wrench, ~clear_body_wrenches,
+  ~apply_joint_effort, ~clear_joint_forces, ~get_link_properties, ~set_link_properties,
+  ~get_joint_properties, ~set_model_configuration, ~get_light_properties,
+  ~set_light_properties; dynamic_reconfigure of the physics (gazebo/physics_config) on ``~``.
+  get_model_properties' geom_names are Gazebo's collision names (world_models.
+  urdf_collision_names for a URDF: "<link>_collision", "<link>_fixed_joint_lump__<child>_
+  collision_<i>"). The wrench, effort, link, joint and light semantics: sim/world_control.
 Parameters:
   ~model_states_rate (100.0)  Hz of sim time; 0 = never publish model/link states
 Every request runs in the simulation loop between two physics steps (SimNode's request queue)
 and answers within one step; a bad one gets success=false and Gazebo's one-line status.
 """
 import threading
+import time
 
 import rospy
-from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEPhysics
-from gazebo_msgs.srv import (DeleteModel, DeleteModelResponse, GetLinkState,
-                             GetLinkStateResponse, GetModelProperties,
-                             GetModelPropertiesResponse, GetModelState, GetModelStateResponse,
-                             GetPhysicsProperties, GetPhysicsPropertiesResponse,
-                             GetWorldProperties, GetWorldPropertiesResponse, SetLinkState,
-                             SetLinkStateResponse, SetModelState, SetModelStateResponse,
-                             SetPhysicsProperties, SetPhysicsPropertiesResponse, SpawnModel,
-                             SpawnModelResponse)
+from gazebo_msgs.msg import (LinkState, LinkStates, ModelState, ModelStates, ODEPhysics,
+                             PerformanceMetrics, SensorPerformanceMetric)
+from gazebo_msgs.srv import (ApplyBodyWrench, ApplyBodyWrenchResponse, ApplyJointEffort,
+                             ApplyJointEffortResponse, BodyRequest, BodyRequestResponse,
+                             DeleteModel, DeleteModelResponse, GetJointProperties,
+                             GetJointPropertiesResponse, GetLightProperties,
+                             GetLightPropertiesResponse, GetLinkProperties,
+                             GetLinkPropertiesResponse, GetLinkState, GetLinkStateResponse,
+                             GetModelProperties, GetModelPropertiesResponse, GetModelState,
+                             GetModelStateResponse, GetPhysicsProperties,
+                             GetPhysicsPropertiesResponse, GetWorldProperties,
+                             GetWorldPropertiesResponse, JointRequest, JointRequestResponse,
+                             SetLightProperties, SetLightPropertiesResponse, SetLinkProperties,
+                             SetLinkPropertiesResponse, SetLinkState, SetLinkStateResponse,
+                             SetModelConfiguration, SetModelConfigurationResponse,
+                             SetModelState, SetModelStateResponse, SetPhysicsProperties,
+                             SetPhysicsPropertiesResponse, SpawnModel, SpawnModelResponse)
 from geometry_msgs.msg import Pose, Twist
 
 from ..sim.physics_properties import OdeConfig, PhysicsProperties
 from ..sim.world_control import RequestError, WorldControl
 
 ANSWER_TIMEOUT = 10.0    # wall s a service waits for the loop before it gives up
+METRICS_PERIOD = 1.0     # wall s between two ~performance_metrics
+JOINT_TYPES = {"revolute": GetJointPropertiesResponse.REVOLUTE,
+               "prismatic": GetJointPropertiesResponse.PRISMATIC,
+               "ball": GetJointPropertiesResponse.BALL}
 
 
 def pose_in(msg):
@@ -108,8 +134,20 @@ class WorldApi:
                 ("spawn_urdf_model", SpawnModel, self._spawner("urdf")),
                 ("delete_model", DeleteModel, self._delete_model),
                 ("get_physics_properties", GetPhysicsProperties, self._get_physics),
-                ("set_physics_properties", SetPhysicsProperties, self._set_physics)):
+                ("set_physics_properties", SetPhysicsProperties, self._set_physics),
+                ("apply_body_wrench", ApplyBodyWrench, self._apply_body_wrench),
+                ("clear_body_wrenches", BodyRequest, self._clear_body_wrenches),
+                ("apply_joint_effort", ApplyJointEffort, self._apply_joint_effort),
+                ("clear_joint_forces", JointRequest, self._clear_joint_forces),
+                ("get_link_properties", GetLinkProperties, self._get_link_properties),
+                ("set_link_properties", SetLinkProperties, self._set_link_properties),
+                ("get_joint_properties", GetJointProperties, self._get_joint_properties),
+                ("set_model_configuration", SetModelConfiguration,
+                 self._set_model_configuration),
+                ("get_light_properties", GetLightProperties, self._get_light_properties),
+                ("set_light_properties", SetLightProperties, self._set_light_properties)):
             rospy.Service("~" + name, srv_type, self._in_loop(name, handler))
+        self.metrics = PerformanceMeter(self)
         self.reconfigure = None
         try:
             from .physics_reconfigure import PhysicsReconfigure
@@ -288,3 +326,182 @@ class WorldApi:
         """Apply ``props`` (in the loop): the sim's step and engine, then the pacing."""
         self.control.set_physics_properties(props)
         self.node.pacer.set_rtf(props.real_time_factor, self.sim.time)
+
+    # --- forces, links, joints, lights (run in the loop) ---------------------------------------
+
+    def _apply_body_wrench(self, req):
+        p, w = req.reference_point, req.wrench
+        try:
+            self.control.apply_body_wrench(
+                req.body_name, req.reference_frame, (p.x, p.y, p.z),
+                (w.force.x, w.force.y, w.force.z), (w.torque.x, w.torque.y, w.torque.z),
+                req.start_time.to_nsec(), req.duration.to_nsec())
+        except RequestError as err:
+            return ApplyBodyWrenchResponse(False, str(err))
+        return ApplyBodyWrenchResponse(True, "")    # Gazebo says nothing more
+
+    def _clear_body_wrenches(self, req):
+        self.control.clear_body_wrenches(req.body_name)
+        return BodyRequestResponse()
+
+    def _apply_joint_effort(self, req):
+        try:
+            self.control.apply_joint_effort(req.joint_name, req.effort,
+                                            req.start_time.to_nsec(), req.duration.to_nsec())
+        except RequestError as err:
+            return ApplyJointEffortResponse(False, str(err))
+        return ApplyJointEffortResponse(True, "ApplyJointEffort: effort set")
+
+    def _clear_joint_forces(self, req):
+        self.control.clear_joint_forces(req.joint_name)
+        return JointRequestResponse()
+
+    def _get_link_properties(self, req):
+        resp = GetLinkPropertiesResponse()
+        try:
+            props = self.control.get_link_properties(req.link_name)
+        except RequestError as err:
+            resp.success, resp.status_message = False, str(err)
+            return resp
+        resp.com.position.x, resp.com.position.y, resp.com.position.z = props.com
+        resp.com.orientation.w = 1.0       # the inertia is given in the link's axes
+        resp.gravity_mode, resp.mass = props.gravity_mode, props.mass
+        resp.ixx, resp.ixy, resp.ixz, resp.iyy, resp.iyz, resp.izz = props.inertia
+        resp.success, resp.status_message = True, "GetLinkProperties: got properties"
+        return resp
+
+    def _set_link_properties(self, req):
+        c = req.com.position
+        try:
+            self.control.set_link_properties(
+                req.link_name, (c.x, c.y, c.z), req.gravity_mode, req.mass,
+                (req.ixx, req.ixy, req.ixz, req.iyy, req.iyz, req.izz))
+        except RequestError as err:
+            return SetLinkPropertiesResponse(False, str(err))
+        return SetLinkPropertiesResponse(True, "SetLinkProperties: properties set")
+
+    def _get_joint_properties(self, req):
+        resp = GetJointPropertiesResponse()
+        try:
+            props = self.control.get_joint_properties(req.joint_name)
+        except RequestError as err:
+            resp.success, resp.status_message = False, str(err)
+            return resp
+        resp.type = JOINT_TYPES.get(props.kind, resp.REVOLUTE)
+        resp.damping, resp.position, resp.rate = props.damping, props.position, props.rate
+        resp.success, resp.status_message = True, "GetJointProperties: got properties"
+        return resp
+
+    def _set_model_configuration(self, req):
+        try:   # urdf_param_name is ignored, as Gazebo ignores it
+            status = self.control.set_model_configuration(
+                req.model_name, list(req.joint_names), list(req.joint_positions))
+        except RequestError as err:
+            return SetModelConfigurationResponse(False, str(err))
+        return SetModelConfigurationResponse(True, status)
+
+    def _get_light_properties(self, req):
+        resp = GetLightPropertiesResponse()
+        try:
+            light = self.control.get_light(req.light_name)
+        except RequestError as err:
+            resp.success, resp.status_message = False, str(err)
+            return resp
+        d = resp.diffuse
+        d.r, d.g, d.b, d.a = light.diffuse
+        resp.attenuation_constant = light.attenuation_constant
+        resp.attenuation_linear = light.attenuation_linear
+        resp.attenuation_quadratic = light.attenuation_quadratic
+        resp.success = True                 # Gazebo's status_message stays empty
+        return resp
+
+    def _set_light_properties(self, req):
+        d, s, v = req.diffuse, req.specular, req.direction
+        try:
+            self.control.set_light(
+                req.light_name, req.cast_shadows, (d.r, d.g, d.b, d.a), (s.r, s.g, s.b, s.a),
+                (req.attenuation_constant, req.attenuation_linear, req.attenuation_quadratic),
+                (v.x, v.y, v.z), pose_in(req.pose))
+        except RequestError as err:
+            return SetLightPropertiesResponse(False, str(err))
+        return SetLightPropertiesResponse(True, "")
+
+
+def _lumped_link(description, link: str) -> str:
+    """The link that ``link`` becomes part of once fixed joints are lumped (Gazebo's)."""
+    try:
+        joint = description.parent_joint(link)
+        while joint is not None and joint.type == "fixed":
+            link = joint.parent
+            joint = description.parent_joint(link)
+    except KeyError:
+        pass
+    return link
+
+
+def sensor_names(world: str, robot) -> dict:
+    """Gazebo-style scoped names of a SimRobot's sensors: {"scan" | "imu" | "camera": name}."""
+    names = {}
+    for key, sensor, link in (
+            ("scan", robot.laser_sensor, getattr(robot.laser_sensor, "link", "")),
+            ("imu", robot.imu_plugin, getattr(robot.imu_plugin, "body_name", "")),
+            ("camera", robot.camera_sensor, getattr(robot.camera_sensor, "link", ""))):
+        if sensor is not None:
+            names[key] = "::".join((world, robot.name, _lumped_link(robot.description, link),
+                                    sensor.name))
+    return names
+
+
+class PerformanceMeter:
+    """~performance_metrics: a wall-clock thread asks the loop every METRICS_PERIOD for a
+    snapshot (sim time, each robot's published sensor readings); the rates are the change since
+    the last snapshot. Published only while subscribed; costs the loop nothing between."""
+
+    def __init__(self, api: WorldApi):
+        self.api = api
+        self.sim = api.sim
+        self.pub = api.node._publisher("~performance_metrics", PerformanceMetrics, 10)
+        self._last = None           # (wall s, sim ns, {(robot, sensor): (topics, count)})
+        self._names = {}            # id(RobotTopics) -> its sensor_names
+        threading.Thread(target=self._run, name="performance_metrics", daemon=True).start()
+
+    def _run(self) -> None:
+        while not rospy.is_shutdown():
+            time.sleep(METRICS_PERIOD)
+            self.api._enqueue(self.tick)
+
+    def tick(self) -> None:
+        """In the loop: snapshot, and publish the rates since the last one if subscribed."""
+        wall, sim_ns = time.monotonic(), self.sim.time_ns
+        counts = {}
+        for name, topics in self.api.node.robot_topics.items():
+            for key, count in topics.sensor_updates.items():
+                counts[(name, key)] = (topics, count)
+        last, self._last = self._last, (wall, sim_ns, counts)
+        if last is None or self.pub.get_num_connections() == 0:
+            return
+        self.pub.publish(self.message(last, self._last))
+
+    def message(self, last, now) -> PerformanceMetrics:
+        (wall0, sim0, counts0), (wall1, sim1, counts1) = last, now
+        wall_s, sim_s = wall1 - wall0, (sim1 - sim0) / 1e9
+        msg = PerformanceMetrics()
+        msg.header.stamp = rospy.Time(*divmod(sim1, 1_000_000_000))
+        msg.real_time_factor = sim_s / wall_s if wall_s > 0 else 0.0
+        world = self.sim.world.name
+        live = set()
+        for (robot, key), (topics, count) in counts1.items():
+            live.add(id(topics))
+            names = self._names.get(id(topics))
+            if names is None:
+                names = self._names[id(topics)] = sensor_names(world, topics.robot)
+            if key not in names:
+                continue
+            before = counts0.get((robot, key))
+            done = count - (before[1] if before and before[0] is topics else 0)
+            msg.sensors.append(SensorPerformanceMetric(
+                name=names[key], sim_update_rate=done / sim_s if sim_s > 0 else 0.0,
+                real_update_rate=done / wall_s if wall_s > 0 else 0.0,
+                fps=(done / wall_s if wall_s > 0 else 0.0) if key == "camera" else -1.0))
+        self._names = {k: v for k, v in self._names.items() if k in live}
+        return msg

@@ -143,13 +143,19 @@ def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None)
     return path
 
 
+_ROSPACK = {}   # ROS_PACKAGE_PATH -> its rospkg.RosPack (each new one scans the whole path)
+
+
 def _package_path(package: str) -> Optional[str]:
     try:
         import rospkg
     except ImportError:
         return None
+    key = os.environ.get("ROS_PACKAGE_PATH", "")
+    if key not in _ROSPACK:
+        _ROSPACK[key] = rospkg.RosPack()
     try:
-        return rospkg.RosPack().get_path(package)
+        return _ROSPACK[key].get_path(package)
     except rospkg.ResourceNotFound:
         return None
 

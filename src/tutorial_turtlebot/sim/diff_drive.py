@@ -61,6 +61,11 @@ class DiffDriveController:
         """New body command (already sanitized), kept until the next one (no timeout, as Gazebo)."""
         self._target = wheel_rim_speeds(linear, angular, self.separation)
 
+    @property
+    def stopped(self) -> bool:
+        """Commanded to stand still, and the ramp has come down to it."""
+        return self._target == (0.0, 0.0) and self._rim == [0.0, 0.0]
+
     def update(self, dt: float) -> Tuple[float, float]:
         """Advance the ramp by one control tick of ``dt`` s; return (left, right) in rad/s."""
         target = self._target

@@ -9,7 +9,7 @@ Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
 import os
 import tempfile
-from typing import Dict, List, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 from xml.etree import ElementTree
 
 import numpy as np
@@ -18,6 +18,7 @@ from . import gui_window
 from .bullet import pybullet, quiet_output
 from .camera import disable_egl, enable_egl
 from .urdf_file import RobotDescription
+from .urdf_meshes import bullet_meshes
 from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP, build_world
 from .world_sdf import World
 from ..errors import UserError
@@ -36,16 +37,24 @@ ROBOT_GROUPS = ((1 << MAX_ROBOTS) - 1) << FIRST_ROBOT_BIT
 # instead of climbing it (at 1.0 a Burger pressed into a corner reared up by 0.37 rad).
 WHEEL_FRICTION = 0.5
 BODY_FRICTION = 0.0              # chassis and caster skids slide freely
+# The brake of an idle robot (RobotBody.brake): its wheels held at the angles where they stopped
+# (a position motor of at most the wheel torque, pybullet's default positionGain) and their
+# floor contacts anchored. A wheel found this far (rad) from its held angle was turned by
+# someone else (set_model_configuration): it is held where it is now.
+BRAKE_POSITION_GAIN = 0.1
+BRAKE_MOVED = 0.5
 SPAWN_CLEARANCE = 0.001          # m: drop the robot from just above the floor
 
 
 def _urdf_for_bullet(path: str) -> str:
-    """A copy of the URDF in which bare frames (links with no inertial) weigh next to nothing.
+    """A copy of the URDF in which bare frames (links with no inertial) weigh next to nothing,
+    and whose meshes are the Wavefront files of ``urdf_meshes.bullet_meshes``.
 
-    pybullet would give each of them 1 kg; merged into the chassis that would triple a Burger's
-    mass. Returns the path of a temporary file the caller deletes.
+    pybullet would give each bare frame 1 kg; merged into the chassis that would triple a
+    Burger's mass. Returns the path of a temporary file the caller deletes.
     """
     tree = ElementTree.parse(path)
+    bullet_meshes(tree.getroot(), os.path.dirname(os.path.abspath(path)))
     for link in tree.getroot().iter("link"):
         if link.find("inertial") is None:
             inertial = ElementTree.SubElement(link, "inertial")
@@ -139,6 +148,8 @@ class RobotBody:
         self._com_in_footprint = pybullet.getDynamicsInfo(self.robot, -1, physicsClientId=cid)[3:5]
         self._footprint_in_com = pybullet.invertTransform(*self._com_in_footprint)
         self.wheels = self._wheel_indices(wheel_joints)
+        self._held: Optional[Tuple[float, float]] = None  # wheel angles the brake holds
+        self._anchored = False
         self._frames: Dict[str, np.ndarray] = {}
         (x, y, z), orn = spawn_pose
         self.spawn_pose: Pose = ((x, y, z + SPAWN_CLEARANCE), tuple(orn))
@@ -178,12 +189,63 @@ class RobotBody:
     # --- commands ------------------------------------------------------------------------------
 
     def set_wheel_velocities(self, left: float, right: float) -> None:
-        """Joint velocity targets in rad/s, reached with at most the wheel torque."""
+        """Joint velocity targets in rad/s, reached with at most the wheel torque; releases
+        the brake."""
         if self.wheels:
+            self._held = None
+            self._anchor_wheels(False)
             pybullet.setJointMotorControlArray(
                 self.robot, self.wheels, pybullet.VELOCITY_CONTROL,
                 targetVelocities=(left, right), forces=(self.wheel_torque,) * 2,
                 physicsClientId=self.client)
+
+    def brake(self) -> None:
+        """Keep an idle robot where it is, as Gazebo's diff drive (wheel velocity 0 with the
+        wheel torque) and ODE's static friction do; call it on every control tick while the
+        drive is stopped (set_wheel_velocities releases it).
+
+        A velocity target of 0 is not enough here: in a step's 20 solver iterations pybullet
+        does not reconcile the motor of a light wheel (I/r^2 ~ 0.02 kg) with the ~1 kg
+        chassis through the tyre's friction, and leaves the wheels rolling at ~0.008 rad/s
+        whatever the torque (a Burger crept 15 cm in 10 minutes; 200 iterations without the
+        solver's early exit hold it). Nothing takes that back, a velocity target has no
+        memory. So the brake
+        holds each wheel at the angle where it stopped (a position target, at most the wheel
+        torque): the solver's error now stays an error of angle and is corrected. Held wheels
+        still let the tyres' contacts creep (a Burger turned 8 mrad in 10 minutes), so the
+        brake also anchors them (Bullet's friction anchors: within the friction cone a
+        contact keeps its points and the solver corrects their drift; beyond it, it slides).
+        Anchors alone would not do: a rolling wheel drags its anchor along.
+        """
+        if not self.wheels:
+            return
+        angles, _ = self.wheel_states()
+        if self._held is None or any(abs(a - h) > BRAKE_MOVED
+                                     for a, h in zip(angles, self._held)):
+            self._held = angles
+            pybullet.setJointMotorControlArray(
+                self.robot, self.wheels, pybullet.POSITION_CONTROL, targetPositions=angles,
+                targetVelocities=(0.0, 0.0), forces=(self.wheel_torque,) * 2,
+                positionGains=(BRAKE_POSITION_GAIN,) * 2, velocityGains=(1.0, 1.0),
+                physicsClientId=self.client)
+        self._anchor_wheels(True)
+
+    def _anchor_wheels(self, anchored: bool) -> None:
+        """Anchor the tyres' contacts, or not. A contact made unanchored keeps its points
+        unanchored while it holds (a robot stopped after driving kept creeping), so anchoring
+        renews the tyres' contacts, and with them those a teleport or reset left behind:
+        setting a link's collision filter (to what it is) drops its contacts in pybullet,
+        and the next step makes them afresh."""
+        if anchored != self._anchored:
+            cid = self.client
+            for j in self.wheels:
+                pybullet.changeDynamics(self.robot, j, frictionAnchor=int(anchored),
+                                        physicsClientId=cid)
+                if anchored:
+                    pybullet.setCollisionFilterGroupMask(self.robot, j, self.collision_bit,
+                                                         ALL_COLLISION_GROUPS,
+                                                         physicsClientId=cid)
+            self._anchored = anchored
 
     def reset_robot(self) -> None:
         """Put the robot back at its spawn pose, at rest, every joint at angle 0."""
@@ -191,7 +253,8 @@ class RobotBody:
         cid = self.client
         for j in range(pybullet.getNumJoints(self.robot, physicsClientId=cid)):
             pybullet.resetJointState(self.robot, j, 0.0, 0.0, physicsClientId=cid)
-        # Free-spinning until commanded: pybullet's default velocity motor would brake.
+        # Velocity 0 with the wheel torque (brake released: its held angles are gone) until
+        # the drive's next control tick brakes.
         self.set_wheel_velocities(0.0, 0.0)
 
     def place(self, pose: Pose) -> None:

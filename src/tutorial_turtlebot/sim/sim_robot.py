@@ -204,10 +204,14 @@ class SimRobot:
         return problems
 
     def before_step(self, now_ns: int) -> None:
-        """The diff drive's control tick, when due: the ramp toward the command."""
+        """The diff drive's control tick, when due: the ramp toward the command; stopped, the
+        brake (RobotBody.brake: an idle robot stands still)."""
         if self.drive_plugin and now_ns >= self.control.next_ns and self.control.due(now_ns):
             left, right = self.drive.update(1.0 / self.control.rate_hz)
-            self.body.set_wheel_velocities(left, right)
+            if self.drive.stopped:
+                self.body.brake()
+            else:
+                self.body.set_wheel_velocities(left, right)
 
     def due(self, now_ns: int) -> List[str]:
         """The outputs due at ``now_ns`` (odom, joint_states, scan, imu, camera) after a step;

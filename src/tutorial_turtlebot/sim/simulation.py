@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import Dict, List, Optional, Tuple
 
 from ..errors import UserError
+from .applied_forces import AppliedForces
 from .physics import GRAVITY, WorldPhysics
 from .physics_properties import OdeConfig, PhysicsProperties, bullet_parameters
 from .robot_models import model_limits, turtlebot3_model_of
@@ -19,7 +20,7 @@ from .sim_robot import ImuState, OdomState, RobotOptions, SimRobot, normalize_na
 from .spawn_check import check_spawn, footprint_radius
 from .urdf_file import RobotDescription, read_urdf, urdf_path
 from .world_models import ModelRegistry, RequestError, model_of_urdf_body, models_of_world, \
-    robot_model_name
+    robot_model_name, urdf_collision_names
 from .bullet import pybullet
 from . import gui_window
 from .world_sdf import load_world, resolve_world
@@ -111,6 +112,8 @@ class Simulation:
         self.physics_properties = PhysicsProperties.for_factor(
             config.time_step, 1.0, OdeConfig(sor_pgs_iters=config.solver_iterations),
             (0.0, 0.0, -GRAVITY))
+        # the world API's wrenches, joint efforts and weightless links (world_control)
+        self.forces = AppliedForces(self.physics.client, lambda: self.physics_properties.gravity)
         self.step_ns = seconds_to_ns(config.time_step)
         self.time_ns = 0
         self.schedules: Dict[str, RateSchedule] = {"clock": RateSchedule(config.clock_rate)}
@@ -168,9 +171,15 @@ class Simulation:
         except UserError as err:
             raise RequestError("SpawnModel: Failure - %s" % err) from None
         body = robot.body
+        try:   # Gazebo's names of its collisions (get_model_properties' geom_names)
+            with open(description.path) as f:
+                collisions = urdf_collision_names(f.read())
+        except (OSError, UnicodeDecodeError):
+            collisions = {}
         self.models.add(model_of_urdf_body(name, body.robot, self.physics.client, "robot",
                                            reset_hook=body.reset_robot,
-                                           remove_hook=lambda: self._forget_robot(name)))
+                                           remove_hook=lambda: self._forget_robot(name),
+                                           collisions=collisions))
         self.robots[name] = robot
         self._robot_list.append(robot)
         self._next_output_ns = self.time_ns
@@ -197,6 +206,8 @@ class Simulation:
         now = self.time_ns
         for robot in self._robot_list:
             robot.before_step(now)
+        if self.forces.active:
+            self.forces.apply(now)
         self.physics.step()
         self.time_ns = now = now + self.step_ns
         if now < self._next_output_ns:

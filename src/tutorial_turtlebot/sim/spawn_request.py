@@ -1,27 +1,33 @@
 """A spawn request's model_xml, checked and turned into what the world builder builds. No ROS.
 
-Two kinds, as Gazebo's spawn services take them (gazebo_api.md 2.4):
+Three kinds, as Gazebo's spawn services take them:
 - SDF: ``<sdf>`` (or ``<gazebo>``) holding one ``<model>`` of primitive shapes (world_sdf's
   subset): it becomes a ``World`` of that one model, renamed and placed;
-- URDF: ``<robot>`` of links and joints with box, cylinder or sphere geometry and no robot
-  plugins: it becomes URDF text with the requested name, which pybullet loads;
+- URDF: ``<robot>`` of links and joints with box, cylinder, sphere or mesh geometry and no
+  robot plugins: it becomes URDF text with the requested name and each mesh filename made the
+  absolute path of its file (``package://``, ``file://``, or a path; a relative one from the
+  working directory), which pybullet loads (meshes through urdf_meshes);
 - a robot: a URDF whose ``<gazebo>`` blocks hold plugins: its text as given (``robot``), which
   the simulation builds with its plugins (``Simulation.add_robot``).
 Refused, with one line saying why (a RequestError whose text is the service's status message):
 text over ``MAX_XML_BYTES``, nesting deeper than world_sdf.MAX_XML_DEPTH, a DOCTYPE, malformed
-XML (with its line), an unknown root, meshes.
+XML (with its line), an unknown root, a mesh file that cannot be found or is of an unknown kind,
+a bad mesh scale.
 """
+import os
 from dataclasses import dataclass
 from typing import Optional
 from xml.etree import ElementTree
 
-from ..errors import WorldError
+from ..errors import UserError, WorldError
 from . import reference_frames as rf
+from .urdf_file import mesh_path, mesh_scale
+from .world_bullet import MOVABLE_KINDS
 from .world_models import RequestError
 from .world_sdf import World, load_model_xml, parse_xml
 
 MAX_XML_BYTES = 1_000_000
-URDF_GEOMETRY = ("box", "cylinder", "sphere")
+URDF_GEOMETRY = ("box", "cylinder", "sphere", "mesh")
 PREFIX = "SpawnModel: Failure - "
 
 
@@ -73,7 +79,7 @@ def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "s
     except WorldError as err:
         raise RequestError(PREFIX + str(err)) from None
     for shape in world.shapes:
-        if not shape.static and shape.kind not in URDF_GEOMETRY:
+        if not shape.static and shape.kind not in MOVABLE_KINDS:
             raise RequestError(PREFIX + "%s: a %s cannot be part of a model that is not "
                                         "<static>" % (shape.name, shape.kind))
     return SpawnRequest(name, world=world)
@@ -108,10 +114,27 @@ def _urdf(name: str, robot: ElementTree.Element) -> str:
                     raise RequestError(PREFIX + "URDF link %r: <%s> geometry is not supported "
                                                 "(only %s)" % (link.get("name"), shape.tag,
                                                                ", ".join(URDF_GEOMETRY)))
+                if shape.tag == "mesh":
+                    _absolute_mesh(link.get("name"), shape)
     robot.set("name", name)
     for gazebo in robot.findall("gazebo"):
         robot.remove(gazebo)
     return ElementTree.tostring(robot, encoding="unicode")
+
+
+def _absolute_mesh(link: str, mesh: ElementTree.Element) -> None:
+    """Check a plain URDF's ``<mesh>`` and make its filename the file's absolute path."""
+    where = "URDF link %r <mesh>" % link
+    if mesh_scale(mesh.get("scale")) is None:
+        raise RequestError(PREFIX + "%s: scale=%r is not three non-zero numbers"
+                           % (where, mesh.get("scale")))
+    uri = mesh.get("filename", "").strip()
+    if not uri:
+        raise RequestError(PREFIX + "%s: missing attribute 'filename'" % where)
+    try:
+        mesh.set("filename", mesh_path(uri, os.getcwd()))
+    except UserError as err:
+        raise RequestError(PREFIX + "%s: %s" % (where, err)) from None
 
 
 def placed(pose: rf.Pose, frame: Optional[rf.Pose]) -> rf.Pose:

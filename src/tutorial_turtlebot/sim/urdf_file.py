@@ -5,8 +5,14 @@ frame: ``xyz`` then ``rpy`` as URDF defines it (fixed axes: R = Rz(yaw) * Ry(pit
 Every problem with the file raises ``UrdfError`` whose message is one line:
 ``<file>:<line>: <element at fault>: <what is wrong>``. The ``<gazebo>`` blocks (plugins and
 sensors) are read by ``robot_plugins.read_plugins`` into ``RobotDescription.plugins``.
+A ``<mesh filename>`` (``package://``, ``file://``, absolute, or relative to the URDF's folder;
+for a URDF given as text, to the working directory) is found and checked while reading: it must
+name an existing STL, Collada (.dae) or OBJ file; ``Geometry.filename`` is then its absolute
+path and ``Geometry.uri`` the filename as written. The file's triangles are read later, by
+``mesh_file.load_mesh``, when a body is built.
 """
 import math
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, NoReturn, Optional, Tuple
@@ -15,7 +21,9 @@ from xml.parsers import expat
 
 import numpy as np
 
-from ..errors import UrdfError
+from ..errors import UrdfError, UserError
+from .asset_uri import resolve_uri
+from .mesh_file import SUFFIXES as MESH_SUFFIXES
 from .package_data import data_dir
 from .robot_models import get_model
 from .robot_plugins import RobotPlugins, read_plugins
@@ -47,11 +55,13 @@ class Pose:
 @dataclass(frozen=True)
 class Geometry:
     """A shape in its own frame. ``size``: box (x, y, z); cylinder (radius, length) along z;
-    sphere (radius,); mesh (scale x, y, z) with ``filename``."""
+    sphere (radius,); mesh (scale x, y, z: the factors the file's coordinates are multiplied
+    by), with ``filename`` the mesh file's absolute path and ``uri`` its filename as written."""
 
     shape: str
     size: Tuple[float, ...]
     filename: str = ""
+    uri: str = ""
 
 
 @dataclass(frozen=True)
@@ -170,24 +180,56 @@ def urdf_path(model_name: str, with_camera: bool = False) -> str:
 
 
 def read_urdf(path) -> RobotDescription:
-    """Read and check the URDF file at ``path``; any problem raises a one-line UrdfError."""
-    return _Reader(str(path)).read()
+    """Read and check the URDF file at ``path``; any problem raises a one-line UrdfError.
+    Relative mesh filenames are taken from the file's folder."""
+    path = str(path)
+    return _Reader(path, base_dir=os.path.dirname(os.path.abspath(path))).read()
 
 
-def read_urdf_text(xml: str, source: str) -> RobotDescription:
+def read_urdf_text(xml: str, source: str, base_dir: Optional[str] = None) -> RobotDescription:
     """Read and check a URDF given as text (e.g. a spawn_urdf_model request); ``source`` names
-    it in the one-line UrdfError that any problem raises, and is the result's ``path``."""
+    it in the one-line UrdfError that any problem raises, and is the result's ``path``.
+    Relative mesh filenames are taken from ``base_dir`` (default: the working directory)."""
     if not isinstance(xml, (str, bytes)):
         raise UrdfError("%s: the URDF must be text, not %s" % (source, type(xml).__name__))
-    return _Reader(source, xml).read()
+    return _Reader(source, xml, base_dir or os.getcwd()).read()
+
+
+def mesh_path(uri: str, base_dir: str) -> str:
+    """The absolute path of the mesh file a URDF ``<mesh filename>`` names (relative to
+    ``base_dir``); UserError (one line, without file or element) if it is missing or is not
+    an STL, Collada (.dae) or OBJ file."""
+    path = resolve_uri(uri, base_dir)
+    if not os.path.isfile(path):
+        raise UserError("%s is a folder, not a mesh file" % uri)
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix not in MESH_SUFFIXES:
+        raise UserError("%s: unknown mesh format %r; the formats read are %s"
+                        % (uri, suffix, ", ".join(MESH_SUFFIXES)))
+    return path
+
+
+def mesh_scale(text: Optional[str]) -> Optional[Tuple[float, float, float]]:
+    """A ``<mesh scale>`` as three finite non-zero factors ((1, 1, 1) when absent); None if
+    it is not that (a negative factor mirrors the mesh, as in Gazebo)."""
+    if text is None:
+        return (1.0, 1.0, 1.0)
+    try:
+        values = tuple(float(v) for v in text.split())
+    except ValueError:
+        return None
+    if len(values) != 3 or not all(math.isfinite(v) and v != 0.0 for v in values):
+        return None
+    return values
 
 
 class _Reader:
     """One pass over one file (or text); knows each element's line for the error messages."""
 
-    def __init__(self, path: str, text=None):
+    def __init__(self, path: str, text=None, base_dir: str = ""):
         self.path = path
         self.text = text
+        self.base_dir = base_dir
         self.lines: Dict[ElementTree.Element, int] = {}
 
     def read(self) -> RobotDescription:
@@ -323,9 +365,16 @@ class _Reader:
         elif shape.tag == "sphere":
             size = (self._number(shape, "radius", owner),)
         elif shape.tag == "mesh":
-            filename = self._attr(shape, "filename", owner)
-            scale = self._numbers(shape, "scale", 3, owner) if "scale" in shape.attrib else (1.0,) * 3
-            return Geometry("mesh", scale, filename)
+            uri = self._attr(shape, "filename", owner)
+            scale = mesh_scale(shape.get("scale"))
+            if scale is None:
+                self._fail(shape, "scale=%r is not three non-zero numbers (x y z factors)"
+                           % shape.get("scale"), owner)
+            try:
+                path = mesh_path(uri, self.base_dir)
+            except UserError as err:
+                self._fail(shape, str(err), owner)
+            return Geometry("mesh", scale, path, uri)
         else:
             self._fail(shape, "unknown shape: use <box>, <cylinder>, <sphere> or <mesh>", owner)
         if min(size) <= 0:

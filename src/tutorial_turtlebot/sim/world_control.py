@@ -1,26 +1,34 @@
-"""What Gazebo's world API does to the world, without ROS (gazebo_api.md 2.3-2.6).
+"""What Gazebo's world API does to the world, without ROS.
 
 ``WorldControl`` answers the requests of gazebo_ros_api_plugin against a ``Simulation``: model
 and link states (with reference frames), world and model properties, spawn and delete, physics
-properties. Every refusal raises ``RequestError`` whose text is Gazebo's status message, one
-line; nothing here leaves the world half changed. Call it between two physics steps.
-Poses and twists as in reference_frames.
+properties, body wrenches and joint efforts (applied at every step by the simulation's
+``AppliedForces``), link and joint properties, joint positions (set_model_configuration) and
+the world's lights. Every refusal raises ``RequestError`` whose text is Gazebo's status
+message, one line; nothing here leaves the world half changed. Call it between two physics
+steps. Poses and twists as in reference_frames; times in integer ns of sim time.
 """
+import math
 import os
 import tempfile
 from dataclasses import dataclass, replace
-from typing import List, Optional, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
 
 from ..errors import UserError
 from .bullet import pybullet, quiet_output
+from .applied_forces import EffortJob, WrenchJob
 from .urdf_file import read_urdf_text
+from .urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths
 from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
 from .reference_frames import Pose, Twist
 from .spawn_request import parse_spawn, placed
 from .world_bullet import MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK, build_world
-from .world_models import (ModelRegistry, RequestError, WorldModel, check_model_name,
-                           model_of_urdf_body, models_of_world)
+from .world_lights import Light, read_lights
+from .world_models import (LinkPart, ModelRegistry, RequestError, WorldModel, check_model_name,
+                           model_of_urdf_body, models_of_world, urdf_collision_names)
 
 
 @dataclass
@@ -31,6 +39,38 @@ class ModelProperties:
     geom_names: List[str]
     joint_names: List[str]
     is_static: bool
+
+
+@dataclass
+class LinkProperties:
+    """get_link_properties' answer: the centre of mass in the link frame (x, y, z), m; the
+    inertia tensor about it in the link's axes (ixx, ixy, ixz, iyy, iyz, izz), kg m^2."""
+
+    com: Tuple[float, float, float]
+    gravity_mode: bool
+    mass: float
+    inertia: Tuple[float, float, float, float, float, float]
+
+
+@dataclass
+class JointProperties:
+    """get_joint_properties' answer: ``kind`` revolute, prismatic or ball; one value per axis:
+    damping (N m s/rad or N s/m), position (rad or m), rate (rad/s or m/s)."""
+
+    kind: str
+    damping: List[float]
+    position: List[float]
+    rate: List[float]
+
+
+JOINT_KINDS = {pybullet.JOINT_REVOLUTE: "revolute", pybullet.JOINT_PRISMATIC: "prismatic",
+               pybullet.JOINT_SPHERICAL: "ball"}
+COM_TOLERANCE = 1e-6          # m: a set com.position this close to the present one is unchanged
+# rad/s (or m/s): a joint given an effort may turn this fast. pybullet's default of 100 clamps a
+# light wheel's velocity inside a step that a large effort and its motor fight over, and the
+# clamp then throws the whole robot (2 N m on a TurtleBot3 wheel did).
+EFFORT_JOINT_MAX_VELOCITY = 1e4
+IDLE_WHEEL_RATE = 0.05        # rad/s: a robot whose wheels turn slower stands (its brake holds)
 
 
 def _finite_state(name: str, pose: Pose, twist: Twist) -> None:
@@ -44,6 +84,7 @@ class WorldControl:
     def __init__(self, sim):
         self.sim = sim
         self._get_counts = {}
+        self._lights: Optional[Dict[str, Light]] = None   # read from the world file when asked
 
     @property
     def models(self) -> ModelRegistry:
@@ -175,21 +216,27 @@ class WorldControl:
 
     def _add_robot(self, name: str, urdf: str, pose: Pose, namespace: str) -> None:
         """A robot with its URDF's plugins; its <gazebo> blocks are checked before anything
-        is built (a bad one refuses the spawn naming the element)."""
+        is built (a bad one refuses the spawn naming the element). Relative mesh filenames are
+        taken from the working directory."""
+        try:
+            description = read_urdf_text(urdf, "model_xml of %s" % name)
+        except UserError as err:
+            raise RequestError("SpawnModel: Failure - %s" % err) from None
         fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_robot_")
         try:
             with os.fdopen(fd, "w") as f:
-                f.write(urdf)
-            try:
-                description = read_urdf_text(urdf, "model_xml of %s" % name)
-            except UserError as err:
-                raise RequestError("SpawnModel: Failure - %s" % err) from None
+                f.write(absolute_meshes(urdf, os.getcwd(), mesh_paths(description)))
             self.sim.add_robot(name, namespace, replace(description, path=path), pose)
         finally:
             os.unlink(path)
 
     def _load_urdf(self, name: str, urdf: str, pose: Pose) -> WorldModel:
         cid = self.sim.physics.client
+        collisions = urdf_collision_names(urdf)
+        try:   # meshes as the Wavefront files pybullet loads (urdf_meshes)
+            urdf = bullet_urdf_text(urdf, os.getcwd())
+        except UserError as err:
+            raise RequestError("SpawnModel: Failure - %s" % err) from None
         fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_spawn_")
         try:
             with os.fdopen(fd, "w") as f:
@@ -208,14 +255,20 @@ class WorldControl:
             pybullet.setCollisionFilterGroupMask(body, link, MOVABLE_COLLISION_GROUP,
                                                  MOVABLE_COLLISION_MASK, physicsClientId=cid)
             pybullet.changeDynamics(body, link, lateralFriction=1.0,
+                                    linearDamping=0.0, angularDamping=0.0,  # none in Gazebo
                                     activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
                                     physicsClientId=cid)
-        model = model_of_urdf_body(name, body, cid, "spawned", spawn_pose=pose)
+            if link >= 0:   # a joint turns freely, as Gazebo's (pybullet's default motor brakes)
+                pybullet.setJointMotorControl2(body, link, pybullet.VELOCITY_CONTROL, force=0.0,
+                                               physicsClientId=cid)
+        model = model_of_urdf_body(name, body, cid, "spawned", spawn_pose=pose,
+                                   collisions=collisions)
         model.set_state(pose, rf.ZERO_TWIST)
         return model
 
     def delete(self, name: str) -> None:
         self._model(name, "DeleteModel")  # refuses an unknown name
+        self.sim.forces.forget_model(name)   # its wrenches and efforts go with it
         self.models.remove(name)
 
     # --- physics -----------------------------------------------------------------------------
@@ -232,3 +285,256 @@ class WorldControl:
             raise RequestError("SetPhysicsProperties: %s" % err) from None
         self.sim.set_physics_properties(props)
 
+
+    # --- wrenches and efforts ------------------------------------------------------------------
+
+    def _scoped_link(self, scoped: str) -> Optional[Tuple[WorldModel, LinkPart]]:
+        """The model and link a scoped "model::link" names; None if there is none."""
+        model_name, sep, link_name = scoped.rpartition("::")
+        if not sep or model_name not in self.models:
+            return None
+        model = self.models.get(model_name)
+        try:
+            return model, model.link(link_name)
+        except KeyError:
+            return None
+
+    def _link_com(self, link: LinkPart) -> np.ndarray:
+        cid = self.sim.physics.client
+        if link.index < 0:
+            return np.array(pybullet.getBasePositionAndOrientation(link.body,
+                                                                   physicsClientId=cid)[0])
+        return np.array(pybullet.getLinkState(link.body, link.index, physicsClientId=cid)[0])
+
+    def _start_end(self, start_ns: int, duration_ns: int) -> Tuple[int, Optional[int]]:
+        """A job's (start, end) in sim ns: a start of 0 or in the past is now; a negative
+        duration lasts until cleared (end None)."""
+        start = max(int(start_ns), self.sim.time_ns)
+        return start, (None if duration_ns < 0 else start + int(duration_ns))
+
+    def apply_body_wrench(self, body: str, reference_frame: str, point: Sequence[float],
+                          force: Sequence[float], torque: Sequence[float], start_ns: int = 0,
+                          duration_ns: int = -1) -> None:
+        """Push link ``body`` ("model::link") with ``force`` (N) and ``torque`` (N m) from
+        ``start_ns`` for ``duration_ns`` (< 0: until clear_body_wrenches).
+
+        ``reference_frame`` "" or world: force and torque in world axes, and ``point`` (where
+        the force acts) is an offset from the link's centre of mass in world axes, as Gazebo
+        adds ``point x force`` to the torque about it. Another model or scoped link: force,
+        torque and ``point`` are in that frame's axes and ``point`` is a position in it. The
+        wrench is turned into world axes once, now, and then held (Gazebo holds it too)."""
+        found = self._scoped_link(body)
+        if found is None:
+            raise RequestError("ApplyBodyWrench: body does not exist")
+        model, link = found
+        if not rf.finite(point, force, torque):
+            raise RequestError("ApplyBodyWrench: NaN or infinite value in the wrench or the "
+                               "reference point")
+        if link.body is None:
+            raise RequestError("ApplyBodyWrench: body %r is static: a wrench cannot move it"
+                               % body)
+        if not rf.is_world_frame(reference_frame):
+            try:
+                frame_pose = self.models.frame(reference_frame)[0]
+            except KeyError:
+                raise RequestError("ApplyBodyWrench: reference_frame not found") from None
+        else:
+            frame_pose = None
+        f, t, r = (np.array(v, dtype=float) for v in (force, torque, point))
+        if frame_pose is None:
+            force_w, torque_w = f, t + np.cross(r, f)
+        else:
+            origin = np.array(frame_pose[0])
+            force_w = np.array(rf.rotate(frame_pose[1], f))
+            acts_at = origin + np.array(rf.rotate(frame_pose[1], r))
+            torque_w = (np.array(rf.rotate(frame_pose[1], t))
+                        + np.cross(acts_at - self._link_com(link), force_w))
+        start, end = self._start_end(start_ns, duration_ns)
+        self.sim.forces.add_wrench(WrenchJob(model.name, body, link.body, link.index,
+                                             tuple(force_w), tuple(torque_w), start, end))
+
+    def clear_body_wrenches(self, body: str) -> int:
+        """Stop every wrench on ``body``; how many there were (an unknown name: 0)."""
+        return self.sim.forces.clear_wrenches(body)
+
+    def _joint(self, name: str, what: str) -> Tuple[WorldModel, int, int, tuple]:
+        """(model, pybullet body, joint index, getJointInfo) of the movable joint ``name``
+        (the first model in world order that has one of that name, or "model::joint")."""
+        model_name, sep, joint_name = name.rpartition("::")
+        if sep and model_name in self.models:
+            candidates = [self.models.get(model_name)]
+        else:
+            candidates, joint_name = self.models.models(), name
+        cid = self.sim.physics.client
+        for model in candidates:
+            if joint_name not in model.joints:
+                continue
+            for part in model.parts:
+                if not part.movable:
+                    continue
+                for j in range(pybullet.getNumJoints(part.body, physicsClientId=cid)):
+                    info = pybullet.getJointInfo(part.body, j, physicsClientId=cid)
+                    if info[1].decode() == joint_name and info[2] != pybullet.JOINT_FIXED:
+                        return model, part.body, j, info
+        raise RequestError("%s: joint not found" % what)
+
+    def apply_joint_effort(self, joint: str, effort: float, start_ns: int = 0,
+                           duration_ns: int = -1) -> None:
+        """Add ``effort`` (N m, or N on a prismatic joint) to ``joint`` from ``start_ns`` for
+        ``duration_ns`` (< 0: until clear_joint_forces)."""
+        if not math.isfinite(effort):
+            raise RequestError("ApplyJointEffort: NaN or infinite effort")
+        model, body, index, info = self._joint(joint, "ApplyJointEffort")
+        pybullet.changeDynamics(body, index, maxJointVelocity=EFFORT_JOINT_MAX_VELOCITY,
+                                physicsClientId=self.sim.physics.client)
+        start, end = self._start_end(start_ns, duration_ns)
+        self.sim.forces.add_effort(EffortJob(model.name, info[1].decode(), body, index,
+                                             float(effort), start, end))
+
+    def clear_joint_forces(self, joint: str) -> int:
+        """Stop every effort on ``joint``; how many there were (an unknown name: 0)."""
+        return self.sim.forces.clear_efforts(joint)
+
+    # --- link and joint properties ---------------------------------------------------------------
+
+    def _inertial(self, link: LinkPart):
+        """(mass, com position in the link frame, rotation of pybullet's inertia axes in the
+        link frame as a 3x3, principal moments) of a movable link."""
+        cid = self.sim.physics.client
+        info = pybullet.getDynamicsInfo(link.body, link.index, physicsClientId=cid)
+        if link.index < 0:   # the body's base frame is its inertial frame
+            com = rf.inverse(link.in_body)
+        else:
+            com = (tuple(info[3]), tuple(info[4]))
+        rotation = np.array(pybullet.getMatrixFromQuaternion(com[1])).reshape(3, 3)
+        return info[0], tuple(com[0]), rotation, np.array(info[2], dtype=float)
+
+    def get_link_properties(self, scoped: str) -> LinkProperties:
+        found = self._scoped_link(scoped)
+        if found is None:
+            raise RequestError("GetLinkProperties: link not found, did you forget to scope the "
+                               "link by model name?")
+        _, link = found
+        if link.body is None:   # part of a static model: nothing moves it
+            return LinkProperties((0.0, 0.0, 0.0), True, 0.0, (0.0,) * 6)
+        mass, com, rotation, moments = self._inertial(link)
+        t = rotation @ np.diag(moments) @ rotation.T
+        return LinkProperties(tuple(float(v) for v in com),
+                              self.sim.forces.has_gravity(link.body, link.index), float(mass),
+                              tuple(float(v) for v in (t[0, 0], t[0, 1], t[0, 2], t[1, 1],
+                                                       t[1, 2], t[2, 2])))
+
+    def set_link_properties(self, scoped: str, com: Sequence[float], gravity_mode: bool,
+                            mass: float, inertia: Sequence[float]) -> None:
+        """Set a link's mass (kg), inertia (ixx, ixy, ixz, iyy, iyz, izz about its centre of
+        mass, link axes, kg m^2) and whether gravity pulls it. ``com`` (the centre of mass in
+        the link frame, m) must stay where it is: pybullet cannot move it in a built body;
+        the com orientation is ignored, as Gazebo ignores it."""
+        found = self._scoped_link(scoped)
+        if found is None:
+            raise RequestError("SetLinkProperties: link not found, did you forget to scope the "
+                               "link by model name?")
+        model, link = found
+        if not rf.finite(com, (mass,), inertia):
+            raise RequestError("SetLinkProperties: NaN or infinite value in the request")
+        if link.body is None:
+            raise RequestError("SetLinkProperties: link %r is static here: it has no mass to set"
+                               % scoped)
+        if mass <= 0:
+            raise RequestError("SetLinkProperties: mass %g kg must be > 0" % mass)
+        ixx, ixy, ixz, iyy, iyz, izz = inertia
+        tensor = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)
+        if np.linalg.eigvalsh(tensor).min() <= 0:
+            raise RequestError("SetLinkProperties: the inertia tensor (ixx %g iyy %g izz %g "
+                               "ixy %g ixz %g iyz %g) must be positive definite"
+                               % (ixx, iyy, izz, ixy, ixz, iyz))
+        _, present, rotation, _ = self._inertial(link)
+        if max(abs(a - b) for a, b in zip(com, present)) > COM_TOLERANCE:
+            raise RequestError("SetLinkProperties: the centre of mass cannot be moved here: keep "
+                               "com.position at %.6g %.6g %.6g" % present)
+        local = rotation.T @ tensor @ rotation     # in pybullet's inertia axes of the link
+        off = max(abs(local[0, 1]), abs(local[0, 2]), abs(local[1, 2]))
+        if off > 1e-6 * max(abs(np.diag(local))):
+            raise RequestError("SetLinkProperties: products of inertia off the link's inertia "
+                               "axes are not supported here (the axes cannot turn)")
+        cid = self.sim.physics.client
+        pybullet.changeDynamics(link.body, link.index, mass=float(mass),
+                                localInertiaDiagonal=tuple(float(v) for v in np.diag(local)),
+                                physicsClientId=cid)
+        self.sim.forces.set_gravity(model.name, link.body, link.index, bool(gravity_mode),
+                                    float(mass))
+
+    def get_joint_properties(self, joint: str) -> JointProperties:
+        _, body, index, info = self._joint(joint, "GetJointProperties")
+        position, rate = pybullet.getJointState(body, index,
+                                                physicsClientId=self.sim.physics.client)[:2]
+        return JointProperties(JOINT_KINDS.get(info[2], "revolute"), [float(info[6])],
+                               [float(position)], [float(rate)])
+
+    def set_model_configuration(self, name: str, joints: Sequence[str],
+                                positions: Sequence[float]) -> str:
+        """Put the named joints of model ``name`` at ``positions`` (rad or m), at rest; the
+        model's root link stays where it is. Joints the model does not have are ignored, as
+        Gazebo ignores them; the answer (Gazebo's status text) names them."""
+        model = self._model(name, "SetModelConfiguration")
+        if len(joints) != len(positions):
+            raise RequestError("SetModelConfiguration: joint name and position list have "
+                               "different lengths")
+        if not rf.finite(positions):
+            raise RequestError("SetModelConfiguration: NaN or infinite joint position")
+        cid = self.sim.physics.client
+        movable: Dict[str, Tuple[int, int]] = {}
+        for part in model.parts:
+            if part.movable:
+                for j in range(pybullet.getNumJoints(part.body, physicsClientId=cid)):
+                    info = pybullet.getJointInfo(part.body, j, physicsClientId=cid)
+                    if info[2] != pybullet.JOINT_FIXED:
+                        movable.setdefault(info[1].decode(), (part.body, j))
+        wanted = dict(zip(joints, positions))   # the last of a repeated name wins, as Gazebo's
+        robot = self.sim.robots.get(name)
+        idle = robot is not None and robot.body.wheels and max(
+            abs(v) for v in robot.body.wheel_states()[1]) < IDLE_WHEEL_RATE
+        for joint, position in wanted.items():
+            if joint in movable:
+                pybullet.resetJointState(*movable[joint], float(position), 0.0,
+                                         physicsClientId=cid)
+        if idle and any(movable[j][1] in robot.body.wheels for j in wanted if j in movable):
+            # an idle robot's wheels are held where they stopped: hold them where they are now
+            robot.body.set_wheel_velocities(0.0, 0.0)
+        ignored = [j for j in wanted if j not in movable]
+        if ignored:
+            return ("SetModelConfiguration: success (ignored, as Gazebo does: model %s has no "
+                    "joint %s)" % (name, ", ".join(ignored)))
+        return "SetModelConfiguration: success"
+
+    # --- lights ----------------------------------------------------------------------------------
+
+    def lights(self) -> Dict[str, Light]:
+        """The world's lights by name (read from the world file the first time)."""
+        if self._lights is None:
+            self._lights = read_lights(self.sim.world.path)
+        return self._lights
+
+    def get_light(self, name: str) -> Light:
+        light = self.lights().get(name)
+        if light is None:
+            raise RequestError("getLightProperties: Requested light %s not found!" % name)
+        return replace(light)
+
+    def set_light(self, name: str, cast_shadows: bool, diffuse: Sequence[float],
+                  specular: Sequence[float], attenuation: Sequence[float],
+                  direction: Sequence[float], pose: Pose) -> None:
+        """Keep what set_light_properties gives: ``attenuation`` (constant, linear,
+        quadratic); the pose's quaternion normalised (all-zero: identity)."""
+        light = self.lights().get(name)
+        if light is None:
+            raise RequestError("setLightProperties: Requested light %s not found!" % name)
+        if not rf.finite(diffuse, specular, attenuation, direction, pose[0], pose[1]):
+            raise RequestError("setLightProperties: NaN or infinite value in the request")
+        light.cast_shadows = bool(cast_shadows)
+        light.diffuse = tuple(float(v) for v in diffuse)
+        light.specular = tuple(float(v) for v in specular)
+        light.attenuation_constant, light.attenuation_linear, light.attenuation_quadratic = (
+            float(v) for v in attenuation)
+        light.direction = tuple(float(v) for v in direction)
+        light.pose = (tuple(float(v) for v in pose[0]), rf.normalized(pose[1]))

@@ -10,6 +10,7 @@ in m/s and rad/s, world frame (reference_frames).
 """
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Tuple
+from xml.etree import ElementTree
 
 from .bullet import pybullet
 from . import reference_frames as rf
@@ -276,12 +277,67 @@ def models_of_world(world: World, bodies: Dict[str, int], cid: int,
     return out
 
 
+LUMP = "_fixed_joint_lump__"
+
+
+def urdf_collision_names(urdf: str) -> Dict[str, List[str]]:
+    """Gazebo's names of a URDF's collisions (get_model_properties' geom_names), by the link
+    that holds them once fixed joints are lumped, as gazebo_ros's URDF to SDF conversion
+    (sdformat's parser_urdf) names them: a link takes its own collisions, then those of its
+    fixed-jointed children (depth first, children in joint-name order, as urdfdom keeps
+    them); the i-th (from 0) is called ``<name>_collision`` plus ``_<i>`` when i > 0, where
+    <name> is the collision's own name attribute or else the link it came from, and a name that
+    does not start with the holding link's name is prefixed ``<link>_fixed_joint_lump__``. A
+    TurtleBot3 Burger: base_footprint holds ``base_footprint_fixed_joint_lump__base_link_
+    collision``, ``..._caster_back_link_collision_1`` and ``..._base_scan_collision_2``;
+    each wheel link ``wheel_left_link_collision``. ``urdf``: the XML text; {} if unreadable."""
+    try:
+        robot = ElementTree.fromstring(urdf)
+    except (ElementTree.ParseError, TypeError, ValueError):
+        return {}
+    links = {link.get("name"): link for link in robot.findall("link")}
+    children: Dict[str, List[Tuple[str, str, str]]] = {}
+    parent_kind: Dict[str, str] = {}        # link -> the type of its parent joint
+    for joint in robot.findall("joint"):
+        parent, child = joint.find("parent"), joint.find("child")
+        if parent is None or child is None:
+            continue
+        kind = joint.get("type") or ""
+        children.setdefault(parent.get("link"), []).append(
+            (joint.get("name") or "", kind, child.get("link")))
+        parent_kind[child.get("link")] = kind
+    for joints in children.values():
+        joints.sort()
+
+    def lumped(link: str, depth: int = 0) -> List[str]:
+        if link not in links or depth > len(links):
+            return []
+        names = [c.get("name") or link for c in links[link].findall("collision")]
+        for _, kind, child in children.get(link, ()):
+            if kind == "fixed":
+                names += lumped(child, depth + 1)
+        return names
+
+    out: Dict[str, List[str]] = {}
+    for link in links:
+        if parent_kind.get(link) == "fixed":
+            continue      # lumped into the link above
+        names = []
+        for i, base in enumerate(lumped(link)):
+            geom = base + "_collision" + ("_%d" % i if i else "")
+            names.append(geom if geom.startswith(link) else link + LUMP + geom)
+        out[link] = names
+    return out
+
+
 def model_of_urdf_body(name: str, body: int, cid: int, source: str,
                        reset_hook: Optional[Callable[[], None]] = None,
                        spawn_pose: Optional[Pose] = None,
-                       remove_hook: Optional[Callable[[], None]] = None) -> WorldModel:
+                       remove_hook: Optional[Callable[[], None]] = None,
+                       collisions: Optional[Dict[str, List[str]]] = None) -> WorldModel:
     """A WorldModel of a body loaded from a URDF: the model frame is its root link's frame;
-    links are the root and every jointed link (fixed links merged, as Gazebo lumps them)."""
+    links are the root and every jointed link (fixed links merged, as Gazebo lumps them);
+    ``collisions``: urdf_collision_names of the URDF, the model's geoms in link order."""
     info = pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)
     com_in_root = (tuple(info[3]), tuple(info[4]))
     root = pybullet.getBodyInfo(body, physicsClientId=cid)[0].decode()
@@ -292,8 +348,10 @@ def model_of_urdf_body(name: str, body: int, cid: int, source: str,
         links.append(LinkPart(joint[12].decode(), body=body, index=j))
         joints.append(joint[1].decode())
     part = BodyPart(body, com_in_root, movable=True)
+    geoms = [geom for link in links for geom in (collisions or {}).get(link.name, ())]
     model = WorldModel(name, False, source, [part], links, spawn_pose or rf.IDENTITY, cid,
-                       joints=joints, reset_hook=reset_hook, remove_hook=remove_hook)
+                       joints=joints, geoms=geoms, reset_hook=reset_hook,
+                       remove_hook=remove_hook)
     if spawn_pose is None:
         model.spawn_pose = model.pose()
     return model

@@ -1,0 +1,216 @@
+"""A URDF's ``<mesh>`` geometry turned into the Wavefront files pybullet loads. No ROS, no pybullet.
+
+pybullet's own URDF loader would read STL and OBJ itself, and Collada with its up axis applied
+(Gazebo does not apply it). So every mesh is read by ``mesh_file.load_mesh`` (Collada's unit
+applied, its up axis not; the URDF ``scale`` applied) and the URDF that pybullet loads names
+Wavefront files instead, in metres:
+
+- a mesh ``<visual>`` becomes one ``<visual>`` per colour part of the mesh, each in the URDF
+  ``<material>``'s colour where the visual has one (it overrides the mesh's own colours, as in
+  Gazebo), else in the part's colour from the file (none: pybullet's default);
+- a mesh ``<collision>`` becomes one file of the mesh's convex hull: pybullet collides a moving
+  body's mesh as its convex hull (Gazebo's ODE collides with the triangles themselves).
+
+The files are written once per process for each (mesh file, scale) into one folder of the
+system's temporary directory, which is removed when the process ends (the folder of a process
+that was killed is removed by the next process that makes one).
+"""
+import atexit
+import copy
+import os
+import shutil
+import tempfile
+from typing import Dict, List, Optional, Sequence, Tuple
+from xml.etree import ElementTree
+
+import numpy as np
+
+from .asset_uri import resolve_uri
+from .mesh_file import Mesh, MeshPart, convex_hull_vertices, load_mesh, write_obj_parts
+from .urdf_file import mesh_scale
+from ..errors import UserError
+
+Rgba = Tuple[float, float, float, float]
+CACHE_PREFIX = "tutorial_turtlebot_urdf_meshes_"
+
+_cache_dir: Optional[str] = None
+_visual_parts: Dict[tuple, List[Tuple[str, Optional[Rgba]]]] = {}
+_hulls: Dict[tuple, str] = {}
+
+
+def _folder() -> str:
+    """This process's folder of converted meshes, made on first use."""
+    global _cache_dir
+    if _cache_dir is None or not os.path.isdir(_cache_dir):
+        _sweep_dead()
+        _cache_dir = tempfile.mkdtemp(prefix="%s%d_" % (CACHE_PREFIX, os.getpid()))
+        _visual_parts.clear()
+        _hulls.clear()
+        atexit.register(shutil.rmtree, _cache_dir, True)
+    return _cache_dir
+
+
+def _sweep_dead() -> None:
+    """Remove the folders left by processes that no longer run (killed before their atexit)."""
+    root = tempfile.gettempdir()
+    try:
+        names = os.listdir(root)
+    except OSError:
+        return
+    for name in names:
+        if not name.startswith(CACHE_PREFIX):
+            continue
+        pid = name[len(CACHE_PREFIX):].split("_", 1)[0]
+        if not pid.isdigit() or int(pid) == os.getpid():
+            continue
+        try:
+            os.kill(int(pid), 0)
+        except ProcessLookupError:
+            shutil.rmtree(os.path.join(root, name), ignore_errors=True)
+        except OSError:
+            pass                              # alive, another user's
+
+
+def _key(path: str, scale: Sequence[float]) -> tuple:
+    stat = os.stat(path)
+    return (os.path.realpath(path), stat.st_mtime_ns, stat.st_size, tuple(scale))
+
+
+def visual_parts(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)
+                 ) -> List[Tuple[str, Optional[Rgba]]]:
+    """[(Wavefront file, the part's rgba or None)] of the mesh file ``path`` times ``scale``:
+    one file per colour part, in metres. MeshError (one line) for a bad file."""
+    mesh = load_mesh(path, scale)
+    key = _key(path, scale)
+    folder = _folder()
+    if key not in _visual_parts:
+        _visual_parts[key] = write_obj_parts(mesh, folder)
+    return _visual_parts[key]
+
+
+def hull_file(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> str:
+    """A Wavefront file of the convex hull's corners of the mesh file ``path`` times ``scale``
+    (its triangles are a fan over the corners: pybullet builds its hull from the points)."""
+    mesh = load_mesh(path, scale)
+    key = _key(path, scale)
+    folder = _folder()
+    if key not in _hulls:
+        corners = convex_hull_vertices(mesh)
+        if len(corners) < 3:                 # a line or a point: still a file pybullet reads
+            corners = np.concatenate([corners, corners[:1], corners[-1:]])[:max(3, len(corners))]
+        fan = np.array([(0, k, k + 1) for k in range(1, len(corners) - 1)], dtype=np.int64)
+        hull = Mesh(mesh.path, np.asarray(corners, dtype=np.float64), (MeshPart(fan, None),))
+        _hulls[key] = write_obj_parts(hull, folder)[0][0]
+    return _hulls[key]
+
+
+def _mesh_element(element: ElementTree.Element) -> Optional[ElementTree.Element]:
+    geometry = element.find("geometry")
+    return geometry.find("mesh") if geometry is not None else None
+
+
+def _scale(mesh: ElementTree.Element) -> Tuple[float, float, float]:
+    scale = mesh_scale(mesh.get("scale"))
+    if scale is None:
+        raise UserError("scale=%r is not three non-zero numbers" % mesh.get("scale"))
+    return scale
+
+
+def _has_colour(material: Optional[ElementTree.Element], colours: Dict[str, bool]) -> bool:
+    """Whether a visual's ``<material>`` gives it a colour (its own, or a robot-level one's)."""
+    if material is None:
+        return False
+    if material.find("color") is not None:
+        return True
+    return colours.get(material.get("name", ""), False)
+
+
+def bullet_meshes(robot: ElementTree.Element, base_dir: str) -> None:
+    """Rewrite, in place, every ``<mesh>`` visual and collision of the URDF ``<robot>`` into
+    the Wavefront files of this module (filenames relative to ``base_dir``). UserError (one
+    line) for a mesh that cannot be found or read."""
+    colours = {m.get("name", ""): m.find("color") is not None for m in robot.findall("material")}
+    for link in robot.findall("link"):
+        try:
+            _link_meshes(link, colours, base_dir)
+        except UserError as err:
+            raise UserError("link %r <mesh>: %s" % (link.get("name", ""), err)) from None
+
+
+def _link_meshes(link: ElementTree.Element, colours: Dict[str, bool], base_dir: str) -> None:
+    """bullet_meshes of one link."""
+    for number, visual in enumerate(list(link.findall("visual"))):
+        mesh = _mesh_element(visual)
+        if mesh is None:
+            continue
+        path = resolve_uri(mesh.get("filename", ""), base_dir)
+        parts = visual_parts(path, _scale(mesh))
+        override = _has_colour(visual.find("material"), colours)
+        index = list(link).index(visual)
+        link.remove(visual)
+        for part, (obj, rgba) in enumerate(parts):
+            piece = copy.deepcopy(visual)
+            if len(parts) > 1 and piece.get("name"):
+                piece.set("name", "%s_part%d" % (piece.get("name"), part))
+            piece_mesh = _mesh_element(piece)
+            piece_mesh.set("filename", obj)
+            piece_mesh.attrib.pop("scale", None)
+            if not override:
+                for material in piece.findall("material"):
+                    piece.remove(material)
+                if rgba is not None:
+                    material = ElementTree.SubElement(
+                        piece, "material",
+                        name="%s_mesh%d_part%d" % (link.get("name", ""), number, part))
+                    ElementTree.SubElement(material, "color",
+                                           rgba=" ".join("%.6g" % c for c in rgba))
+            link.insert(index + part, piece)
+    for collision in link.findall("collision"):
+        mesh = _mesh_element(collision)
+        if mesh is None:
+            continue
+        path = resolve_uri(mesh.get("filename", ""), base_dir)
+        mesh.set("filename", hull_file(path, _scale(mesh)))
+        mesh.attrib.pop("scale", None)
+
+
+def bullet_urdf_text(xml: str, base_dir: str) -> str:
+    """The URDF text ``xml`` with its meshes rewritten by ``bullet_meshes``; ``xml`` itself if
+    it has no mesh."""
+    robot = ElementTree.fromstring(xml)
+    if next(robot.iter("mesh"), None) is None:
+        return xml
+    bullet_meshes(robot, base_dir)
+    return ElementTree.tostring(robot, encoding="unicode")
+
+
+def absolute_meshes(xml: str, base_dir: str, known: Optional[Dict[str, str]] = None) -> str:
+    """The URDF text ``xml`` with every ``<mesh filename>`` made an absolute path (relative
+    ones from ``base_dir``; ``known``: filename -> path already found), for a copy written
+    elsewhere; ``xml`` itself if it has no mesh."""
+    robot = ElementTree.fromstring(xml)
+    meshes = list(robot.iter("mesh"))
+    if not meshes:
+        return xml
+    known = known or {}
+    for mesh in meshes:
+        uri = mesh.get("filename", "").strip()
+        mesh.set("filename", known.get(uri) or resolve_uri(uri, base_dir))
+    return ElementTree.tostring(robot, encoding="unicode")
+
+
+def mesh_paths(description) -> Dict[str, str]:
+    """{mesh filename as written: its absolute path} of a ``urdf_file.RobotDescription``."""
+    return {shape.geometry.uri: shape.geometry.filename
+            for link in description.links.values()
+            for shape in link.visuals + link.collisions if shape.geometry.shape == "mesh"}
+
+
+def cache_clear() -> None:
+    """Forget and remove every converted file (for tests)."""
+    global _cache_dir
+    if _cache_dir is not None:
+        shutil.rmtree(_cache_dir, ignore_errors=True)
+    _cache_dir = None
+    _visual_parts.clear()
+    _hulls.clear()
