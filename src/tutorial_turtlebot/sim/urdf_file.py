@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import UrdfError, UserError
 from .asset_uri import resolve_uri
-from .mesh_file import SUFFIXES as MESH_SUFFIXES
+from .mesh_file import load_mesh
 from .package_data import data_dir
 from .robot_models import get_model
 from .robot_plugins import RobotPlugins, read_plugins
@@ -197,15 +197,10 @@ def read_urdf_text(xml: str, source: str, base_dir: Optional[str] = None) -> Rob
 
 def mesh_path(uri: str, base_dir: str) -> str:
     """The absolute path of the mesh file a URDF ``<mesh filename>`` names (relative to
-    ``base_dir``); UserError (one line, without file or element) if it is missing or is not
-    an STL, Collada (.dae) or OBJ file."""
+    ``base_dir``), read once here (mesh_file caches it); UserError (one line, without file or
+    element) if it cannot be found or is not a mesh this simulator reads."""
     path = resolve_uri(uri, base_dir)
-    if not os.path.isfile(path):
-        raise UserError("%s is a folder, not a mesh file" % uri)
-    suffix = os.path.splitext(path)[1].lower()
-    if suffix not in MESH_SUFFIXES:
-        raise UserError("%s: unknown mesh format %r; the formats read are %s"
-                        % (uri, suffix, ", ".join(MESH_SUFFIXES)))
+    load_mesh(path)
     return path
 
 
