@@ -43,6 +43,7 @@ PILLOW_NOETIC = "Pillow>=7.1"  # focal's 7.0 has no ImageGrab.grab(xdisplay=): t
 MESH_PIP = ("trimesh>=4,<6", "pycollada>=0.8")
 MESH_PIP_PY38 = ("trimesh>=4,<5", "pycollada>=0.8,<0.9")
 XACRO = "xacro==1.13.3"
+CATKIN_LINT = "catkin-lint==1.6.25"  # make test checks the packages' CMakeLists.txt and package.xml
 WHEEL_MACHINES = ("x86_64", "amd64")
 WHEEL_PYTHONS = ((3, 8), (3, 11))  # pybullet 3.2.7 wheels: cp38, cp39, cp310, cp311
 DEBIAN_DIST_PACKAGES = "/usr/lib/python3/dist-packages"
@@ -133,7 +134,7 @@ class Plan:
     @property
     def pip(self):
         meshes = MESH_PIP_PY38 if tuple(self.python) == (3, 8) else MESH_PIP
-        return ((PYBULLET, self.numpy) + meshes + (XACRO,)
+        return ((PYBULLET, self.numpy) + meshes + (XACRO, CATKIN_LINT)
                 + ((self.pytest,) if self.pytest else ())
                 + ((PILLOW_NOETIC,) if self.ros == "noetic" else ()))
 

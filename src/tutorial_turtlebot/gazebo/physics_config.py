@@ -11,7 +11,8 @@ inf = float('inf')
 _PARAMETERS = (
     ("time_step", "double", 0.001, 0.0, 10.0, "Time step (s) of one physics update"),
     ("max_update_rate", "double", 60.0, 0.0, 1000.0,
-     "Physics updates per wall second aimed at; 0 = as fast as possible"),
+     "Physics updates per wall second aimed at; 0 = as fast as possible, else at least "
+     "0.01 / time_step (a real-time factor of 0.01: lower is refused)"),
     ("gravity_x", "double", 0.0, -100.0, 100.0, "Gravity along x (m/s^2)"),
     ("gravity_y", "double", 0.0, -100.0, 100.0, "Gravity along y (m/s^2)"),
     ("gravity_z", "double", -9.8, -100.0, 100.0, "Gravity along z (m/s^2)"),

@@ -3,7 +3,9 @@
 The server starts from the simulator's physics properties (not the cfg defaults); later
 changes are compared with them and pushed as one set_physics_properties, in the simulation loop.
 ``rosrun dynamic_reconfigure dynparam set /gazebo max_update_rate 0`` runs the sim as fast as
-possible. A change the simulator refuses is answered with the values still in force.
+possible. A change the simulator refuses (as set_physics_properties refuses it: a
+max_update_rate below a real-time factor of pacing.MIN_REAL_TIME_FACTOR, say) is logged in one
+line and answered with the values still in force.
 """
 from dataclasses import asdict
 

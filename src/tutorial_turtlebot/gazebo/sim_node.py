@@ -54,17 +54,24 @@ from rosgraph_msgs.msg import Clock
 from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
+from . import tcpros_guard
 from .world_api import WorldApi
 from ..errors import UserError
 from ..sim.kinematics import yaw_from_quat
 from .nonblocking_publisher import Backlog, make_nonblocking
-from ..sim.pacing import Pacer
+from ..sim.pacing import Pacer, check_rtf
 from .robot_topics import RobotTopics
 from .single_instance import refuse_if_running
 from ..sim.simulation import SimConfig, Simulation
 from ..sim.world_sdf import world_from_command_line
 
 SHUTDOWN_CHECK_STEPS = 200
+# The longest the loop sleeps (wall s) without looking at Ctrl-C and ROS shutdown; a request
+# (a service call, a topic's command) wakes it at once, however slow the pace.
+WAKE_CHECK = 0.1
+# Sleeps shorter than this (wall s) are plain sleeps, which a request does not cut short (it
+# waits at most this long): at real time every sleep is one, and costs half the CPU of a wait.
+SHORT_SLEEP = 0.025
 
 
 def _param(name, default, kind, allow_empty=False):
@@ -261,15 +268,44 @@ class SimNode:
 
     def _send_on_time_until(self, wall_time: float) -> None:
         """Sleep until ``wall_time`` (the clock), sending each kept group of messages at its
-        moment on the way: physics runs in batches, messages leave when their stamps are due."""
+        moment on the way: physics runs in batches, messages leave when their stamps are due.
+        Requests that come meanwhile are run at once, and the batch's end is worked out again
+        after them (they may pause, reset or change the pace); Ctrl-C ends the sleep."""
         pacer, backlog = self.pacer, self.backlog
         while True:
             next_due = backlog.next_due()
-            if next_due is None or next_due >= wall_time:
-                break
-            pacer.sleep_until(next_due)
-            backlog.send_due(next_due)
-        pacer.sleep_until(wall_time)
+            if next_due is not None and next_due < wall_time:
+                if self._sleep_until(next_due):
+                    backlog.send_due(next_due)
+                    continue
+            elif self._sleep_until(wall_time):
+                return
+            if self.stop_requested:
+                return
+            self._wake.clear()          # before the queue is read: a later request wakes again
+            self._handle_requests()
+            if self.paused:
+                return
+            wall_time = pacer.batch_end(self.sim.time)
+            if wall_time is None:
+                return
+
+    def _sleep_until(self, wall_time: float) -> bool:
+        """Sleep until the clock reads ``wall_time``: True then; False as soon as a request is
+        queued or the node is to stop."""
+        wake = self._wake
+        while True:
+            delay = wall_time - time.monotonic()
+            if delay < Pacer.SHORTEST_SLEEP:
+                return True
+            if delay < SHORT_SLEEP:
+                time.sleep(delay)
+                return True
+            if wake.wait(delay if delay < WAKE_CHECK else WAKE_CHECK):
+                return False
+            if delay >= WAKE_CHECK and (self.stop_requested or rospy.is_shutdown()):
+                self.stop_requested = True
+                return False
 
     def _log_status(self) -> None:
         factor = self.pacer.achieved(self.sim.time)
@@ -306,13 +342,19 @@ def main() -> None:
     # publish, holding its locks) and could hang there; here the signal only asks the loop to
     # stop, and the loop shuts ROS down when it is between steps.
     rospy.init_node("gazebo", disable_signals=True)
+    # Before the first topic and service: a client that stalls in its handshake (or is not a
+    # ROS client at all) must not keep the others out.
+    tcpros_guard.install()
     _own_the_clock()
     try:
         config = read_config()
         real_time_factor = _param("real_time_factor", 1.0, float)
-        if not (math.isfinite(real_time_factor) and real_time_factor >= 0):
-            raise UserError("parameter ~real_time_factor: %r must be >= 0 (0 = as fast as "
-                            "possible)" % real_time_factor)
+        try:
+            if not math.isfinite(real_time_factor):
+                raise ValueError("real_time_factor must be finite, got %r" % real_time_factor)
+            check_rtf(real_time_factor)
+        except ValueError as err:
+            raise UserError("parameter ~%s" % err) from None
         paused = _param("paused", False, bool)
         status_period = _param("status_period", 10.0, float)
         if config.gui and not os.environ.get("DISPLAY"):

@@ -5,9 +5,31 @@ The simulator owns the clock: it steps physics as fast as it can and, with a rea
 time has caught up (``batch_end``). ``wall_of`` says when (wall) a sim time is due, so the loop
 sends what it made ahead at its moment (``sleep_until``) while physics itself runs in batches.
 ``rtf`` 0 means never sleep. Times in seconds (float) from ``time.monotonic``.
+
+A factor between 0 and ``MIN_REAL_TIME_FACTOR`` is refused: at 1e-9 one physics step would be
+due days of wall time later, and /clock would look stopped for good.
 """
 import time
 from typing import Callable, Optional
+
+# The slowest pace (sim s per wall s) run: 100 times slower than real time, where a 100 Hz /clock
+# still ticks once a wall second. 0 (as fast as possible) is allowed.
+MIN_REAL_TIME_FACTOR = 0.01
+
+
+def too_slow(rtf: float) -> bool:
+    """Whether ``rtf`` is above 0 but below MIN_REAL_TIME_FACTOR (give or take rounding, so that
+    a max_update_rate of exactly MIN_REAL_TIME_FACTOR / time_step passes)."""
+    return 0 < rtf < MIN_REAL_TIME_FACTOR * (1 - 1e-9)
+
+
+def check_rtf(rtf: float) -> None:
+    """ValueError (one line) unless ``rtf`` is 0 or within MIN_REAL_TIME_FACTOR..inf."""
+    if not rtf >= 0:
+        raise ValueError("real_time_factor must be >= 0 (0 = as fast as possible), got %r" % rtf)
+    if too_slow(rtf):
+        raise ValueError("real_time_factor %r is below the slowest pace %g (0 = as fast as "
+                         "possible)" % (rtf, MIN_REAL_TIME_FACTOR))
 
 
 class Pacer:
@@ -24,9 +46,7 @@ class Pacer:
 
     def __init__(self, rtf: float, clock: Callable[[], float] = time.monotonic,
                  sleep: Callable[[float], None] = time.sleep, min_sleep: float = MIN_SLEEP):
-        if not rtf >= 0:
-            raise ValueError("real_time_factor must be >= 0 (0 = as fast as possible), got %r"
-                             % rtf)
+        check_rtf(rtf)
         self.rtf = rtf
         self._clock = clock
         self._sleep = sleep
@@ -35,9 +55,7 @@ class Pacer:
 
     def set_rtf(self, rtf: float, sim_time: float) -> None:
         """A new factor (0 = as fast as possible) from now on, at ``sim_time``."""
-        if not rtf >= 0:
-            raise ValueError("real_time_factor must be >= 0 (0 = as fast as possible), got %r"
-                             % rtf)
+        check_rtf(rtf)
         self.rtf = rtf
         self.restart(sim_time)
 

@@ -18,7 +18,7 @@ from . import gui_window
 from .bullet import pybullet, quiet_output
 from .camera import disable_egl, enable_egl
 from .urdf_file import RobotDescription
-from .urdf_meshes import bullet_meshes
+from .urdf_meshes import bullet_meshes, urdf_text
 from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP, build_world
 from .world_sdf import World
 from ..errors import UserError
@@ -62,8 +62,8 @@ def _urdf_for_bullet(path: str) -> str:
             ElementTree.SubElement(inertial, "inertia", ixx="1e-12", iyy="1e-12", izz="1e-12",
                                    ixy="0", ixz="0", iyz="0")
     fd, out = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_")
-    with os.fdopen(fd, "wb") as f:
-        tree.write(f)
+    with os.fdopen(fd, "w", encoding="utf-8") as f:   # one element a line (urdf_text)
+        f.write(urdf_text(tree.getroot()))
     return out
 
 
@@ -155,9 +155,17 @@ class RobotBody:
         self.spawn_pose: Pose = ((x, y, z + SPAWN_CLEARANCE), tuple(orn))
         self.reset_robot()
 
-    def _load(self, path: str) -> int:
+    def _load(self, path: Optional[str] = None) -> int:
+        """Load the URDF at ``path`` (kept as text for rebuild), or again that text."""
         cid = self.client
-        tmp = _urdf_for_bullet(path)
+        if path is not None:
+            tmp = _urdf_for_bullet(path)
+            with open(tmp, encoding="utf-8") as f:
+                self._bullet_urdf = f.read()
+        else:
+            fd, tmp = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_")
+            with os.fdopen(fd, "w", encoding="utf-8") as f:
+                f.write(self._bullet_urdf)
         try:
             with quiet_output():
                 robot = pybullet.loadURDF(
@@ -263,6 +271,18 @@ class RobotBody:
         pos, orn = pybullet.multiplyTransforms(*pose, *self._com_in_footprint)
         pybullet.resetBasePositionAndOrientation(self.robot, pos, orn, physicsClientId=cid)
         pybullet.resetBaseVelocity(self.robot, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
+
+    def rebuild(self) -> None:
+        """Replace the robot's body by a new one loaded from the same URDF, at its spawn pose
+        (a body whose state went NaN cannot be repaired in place: world_models.sound)."""
+        old, cid = self.robot, self.client
+        self.robot = self._load()
+        pybullet.removeBody(old, physicsClientId=cid)
+        for j in self.wheels:
+            pybullet.changeDynamics(self.robot, j, lateralFriction=WHEEL_FRICTION,
+                                    physicsClientId=cid)
+        self._held, self._anchored = None, False
+        self.reset_robot()
 
     def remove(self) -> None:
         """Take the robot out of the world."""

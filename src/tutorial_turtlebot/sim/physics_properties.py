@@ -10,8 +10,23 @@ import math
 from dataclasses import dataclass, field, fields, replace
 from typing import Tuple
 
+from . import limits
+
 MIN_TIME_STEP, MAX_TIME_STEP = 0.0001, 0.01       # s, as SimConfig allows
 BULLET_FIELDS = ("sor_pgs_iters", "erp", "cfm")
+# Each ODE field's physical range (low, high, unit); a value outside is refused, never passed on
+# (pybullet takes the solver's iterations as a C int: 4294967295 would not even convert).
+ODE_RANGES = {
+    "sor_pgs_precon_iters": (0, limits.MAX_SOLVER_ITERATIONS, ""),
+    "sor_pgs_iters": (1, limits.MAX_SOLVER_ITERATIONS, ""),
+    "sor_pgs_w": (0.0, 2.0, ""),                          # successive over-relaxation factor
+    "sor_pgs_rms_error_tol": (0.0, limits.MAX_ODE_VALUE, ""),
+    "contact_surface_layer": (0.0, 1.0, "m"),
+    "contact_max_correcting_vel": (0.0, limits.MAX_ODE_VALUE, "m/s"),
+    "cfm": (0.0, limits.MAX_ODE_VALUE, ""),
+    "erp": (0.0, 1.0, ""),
+    "max_contacts": (0, limits.MAX_CONTACTS, ""),
+}
 
 
 @dataclass(frozen=True)
@@ -59,15 +74,26 @@ def validate(props: PhysicsProperties) -> None:
     if not (math.isfinite(props.max_update_rate) and props.max_update_rate >= 0):
         raise ValueError("max_update_rate %r must be >= 0 (0 = as fast as possible)"
                          % props.max_update_rate)
-    if not all(math.isfinite(g) for g in props.gravity):
-        raise ValueError("gravity %r must be finite" % (props.gravity,))
+    from .pacing import MIN_REAL_TIME_FACTOR, too_slow  # the slowest pace the loop runs
+    if too_slow(props.real_time_factor):
+        raise ValueError("max_update_rate %r is below %g at time_step %g (a real-time factor "
+                         "of at least %g; 0 = as fast as possible)"
+                         % (props.max_update_rate, MIN_REAL_TIME_FACTOR / props.time_step,
+                            props.time_step, MIN_REAL_TIME_FACTOR))
+    problem = limits.symmetric("gravity", props.gravity, limits.MAX_GRAVITY, "m/s^2")
+    if problem:
+        raise ValueError(problem)
     for f in fields(OdeConfig):
         value = getattr(props.ode, f.name)
         if isinstance(value, float) and not math.isfinite(value):
             raise ValueError("ode_config.%s %r must be finite" % (f.name, value))
-    if props.ode.sor_pgs_iters < 1:
-        raise ValueError("ode_config.sor_pgs_iters must be at least 1, got %r"
-                         % props.ode.sor_pgs_iters)
+        if f.name in ODE_RANGES:
+            low, high, unit = ODE_RANGES[f.name]
+            if f.type in (int, "int") and value != int(value):
+                raise ValueError("ode_config.%s %r must be a whole number" % (f.name, value))
+            problem = limits.outside("ode_config." + f.name, value, low, high, unit)
+            if problem:
+                raise ValueError(problem)
 
 
 def bullet_parameters(ode: OdeConfig) -> dict:

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import Dict, List, Optional, Tuple
 
 from ..errors import UserError
+from . import limits
 from .applied_forces import AppliedForces
 from .physics import GRAVITY, WorldPhysics
 from .physics_properties import OdeConfig, PhysicsProperties, bullet_parameters
@@ -69,11 +70,17 @@ class SimConfig:
             if value is not None and not (isinstance(value, (int, float))
                                           and math.isfinite(value)):
                 raise UserError("spawn %s must be a finite number, got %r" % (name, value))
+            problem = value is not None and limits.outside(
+                "spawn " + name, value, -limits.MAX_POSITION, limits.MAX_POSITION,
+                "rad" if name == "yaw" else "m")
+            if problem:
+                raise UserError(problem)
         if self.robot_name is not None and (not self.robot_name.strip() or "::" in self.robot_name):
             raise UserError("robot_name %r must be non-empty and without '::'" % self.robot_name)
-        if not (isinstance(self.solver_iterations, int) and self.solver_iterations > 0):
-            raise UserError("solver_iterations must be a positive integer, got %r"
-                            % (self.solver_iterations,))
+        if not (isinstance(self.solver_iterations, int)
+                and 0 < self.solver_iterations <= limits.MAX_SOLVER_ITERATIONS):
+            raise UserError("solver_iterations must be a positive integer, at most %d, got %r"
+                            % (limits.MAX_SOLVER_ITERATIONS, self.solver_iterations))
 
     def robot_options(self, urdf_robot_name: str = "") -> RobotOptions:
         """The launch args' overrides for a robot; its command limits are its TurtleBot3
@@ -114,6 +121,7 @@ class Simulation:
             (0.0, 0.0, -GRAVITY))
         # the world API's wrenches, joint efforts and weightless links (world_control)
         self.forces = AppliedForces(self.physics.client, lambda: self.physics_properties.gravity)
+        self.models.on_rebuild = self.forces.forget_model   # a rebuilt model's bodies are new
         self.step_ns = seconds_to_ns(config.time_step)
         self.time_ns = 0
         self.schedules: Dict[str, RateSchedule] = {"clock": RateSchedule(config.clock_rate)}
@@ -176,10 +184,17 @@ class Simulation:
                 collisions = urdf_collision_names(f.read())
         except (OSError, UnicodeDecodeError):
             collisions = {}
-        self.models.add(model_of_urdf_body(name, body.robot, self.physics.client, "robot",
-                                           reset_hook=body.reset_robot,
-                                           remove_hook=lambda: self._forget_robot(name),
-                                           collisions=collisions))
+        model = model_of_urdf_body(name, body.robot, self.physics.client, "robot",
+                                   reset_hook=body.reset_robot,
+                                   remove_hook=lambda: self._forget_robot(name),
+                                   collisions=collisions)
+
+        def rebuild():   # a body whose state went NaN: the robot's URDF loaded again
+            body.rebuild()
+            return model_of_urdf_body(name, body.robot, self.physics.client, "robot",
+                                      spawn_pose=model.spawn_pose, collisions=collisions)
+        model.rebuild_hook = rebuild
+        self.models.add(model)
         self.robots[name] = robot
         self._robot_list.append(robot)
         self._next_output_ns = self.time_ns

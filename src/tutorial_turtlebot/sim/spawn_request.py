@@ -12,7 +12,8 @@ Three kinds, as Gazebo's spawn services take them:
 Refused, with one line saying why (a RequestError whose text is the service's status message):
 text over ``MAX_XML_BYTES``, nesting deeper than world_sdf.MAX_XML_DEPTH, a DOCTYPE, malformed
 XML (with its line), an unknown root, a mesh file that cannot be found or is of an unknown kind,
-a bad mesh scale.
+a bad mesh scale, any number beyond the limits of ``limits`` (a URDF's read by urdf_file, as a
+robot's are; an SDF's by world_sdf), an initial pose beyond them.
 """
 import os
 from dataclasses import dataclass
@@ -21,7 +22,8 @@ from xml.etree import ElementTree
 
 from ..errors import UserError, WorldError
 from . import reference_frames as rf
-from .urdf_file import mesh_path, mesh_scale
+from . import limits
+from .urdf_file import mesh_path, mesh_scale, read_urdf_text
 from .world_bullet import MOVABLE_KINDS
 from .world_models import RequestError
 from .world_sdf import World, load_model_xml, parse_xml
@@ -66,7 +68,12 @@ def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "s
             raise RequestError(PREFIX + "model_xml: malformed XML: %s" % err) from None
         if any(gazebo.find(".//plugin") is not None for gazebo in robot.iter("gazebo")):
             return SpawnRequest(name, robot=xml)
-        return SpawnRequest(name, urdf=_urdf(name, robot))
+        urdf = _urdf(name, robot)
+        try:   # every number checked as a robot's are (limits), before pybullet sees it
+            read_urdf_text(xml, "model_xml")
+        except UserError as err:
+            raise RequestError(PREFIX + str(err)) from None
+        return SpawnRequest(name, urdf=urdf)
     if kind == "urdf":
         raise RequestError(PREFIX + "spawn_urdf_model needs a <robot> root element, got <%s>"
                            % root.tag)
@@ -139,10 +146,21 @@ def _absolute_mesh(link: str, mesh: ElementTree.Element) -> None:
 
 def placed(pose: rf.Pose, frame: Optional[rf.Pose]) -> rf.Pose:
     """The world pose of a spawn's ``initial_pose`` given in ``frame`` (None: the world), its
-    quaternion normalised (all-zero: identity). ValueError for NaN or inf."""
+    quaternion normalised (all-zero: identity). ValueError (one line naming the field and the
+    limit) for NaN or inf, or a position (given, or in the world) beyond limits.MAX_POSITION."""
     position, orientation = pose
     if not rf.finite(position, orientation):
         raise ValueError("initial_pose has NaN or infinite values")
-    pose = (tuple(position), rf.normalized(orientation))
-    return pose if frame is None else rf.compose(frame, pose)
+    problem = limits.position_problem("initial_pose.position", position)
+    if problem:
+        raise ValueError(problem)
+    pose = (tuple(float(v) for v in position),
+            limits.unit_quaternion(orientation, "initial_pose.orientation"))
+    if frame is None:
+        return pose
+    pose = rf.compose(frame, pose)
+    problem = limits.position_problem("initial_pose.position (in the world)", pose[0])
+    if problem:
+        raise ValueError(problem)
+    return pose[0], limits.unit_quaternion(pose[1])
 

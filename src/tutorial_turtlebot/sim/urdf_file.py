@@ -22,6 +22,7 @@ from xml.parsers import expat
 import numpy as np
 
 from ..errors import UrdfError, UserError
+from . import limits
 from .asset_uri import resolve_uri
 from .mesh_file import load_mesh
 from .package_data import data_dir
@@ -205,15 +206,15 @@ def mesh_path(uri: str, base_dir: str) -> str:
 
 
 def mesh_scale(text: Optional[str]) -> Optional[Tuple[float, float, float]]:
-    """A ``<mesh scale>`` as three finite non-zero factors ((1, 1, 1) when absent); None if
-    it is not that (a negative factor mirrors the mesh, as in Gazebo)."""
+    """A ``<mesh scale>`` as three non-zero factors within +-limits.MAX_SCALE ((1, 1, 1)
+    when absent); None if it is not that (a negative factor mirrors the mesh, as in Gazebo)."""
     if text is None:
         return (1.0, 1.0, 1.0)
     try:
         values = tuple(float(v) for v in text.split())
     except ValueError:
         return None
-    if len(values) != 3 or not all(math.isfinite(v) and v != 0.0 for v in values):
+    if len(values) != 3 or limits.scale_problem(values):
         return None
     return values
 
@@ -313,12 +314,17 @@ class _Reader:
         inertial_elem = elem.find("inertial")
         if inertial_elem is not None:
             mass_elem = self._child(inertial_elem, "mass", owner)
-            mass = self._number(mass_elem, "value", owner)
-            if mass < 0:
-                self._fail(mass_elem, "mass %g kg is negative" % mass, owner)
+            mass = self._numbers(mass_elem, "value", 1, owner, finite=False)[0]
+            problem = limits.mass_problem(mass, allow_zero=True)   # 0: a bare frame
+            if problem:
+                self._fail(mass_elem, problem, owner)
             inertia_elem = self._child(inertial_elem, "inertia", owner)
-            inertia = tuple(self._number(inertia_elem, key, owner)
+            inertia = tuple(self._numbers(inertia_elem, key, 1, owner, finite=False)[0]
                             for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+            ixx, ixy, ixz, iyy, iyz, izz = inertia
+            problem = limits.inertia_problem((ixx, iyy, izz), (ixy, ixz, iyz), allow_zero=True)
+            if problem:
+                self._fail(inertia_elem, problem, owner)
             inertial = Inertial(mass, inertia, self._origin(inertial_elem, owner))
         collisions = tuple(Collision(self._origin(c, owner), self._geometry(c, owner))
                            for c in elem.findall("collision"))
@@ -353,12 +359,17 @@ class _Reader:
         if len(shapes) != 1:
             self._fail(geometry, "needs exactly one of <box>, <cylinder>, <sphere>, <mesh>", owner)
         shape = shapes[0]
-        if shape.tag == "box":
-            size = self._numbers(shape, "size", 3, owner)
-        elif shape.tag == "cylinder":
-            size = (self._number(shape, "radius", owner), self._number(shape, "length", owner))
-        elif shape.tag == "sphere":
-            size = (self._number(shape, "radius", owner),)
+        if shape.tag in ("box", "cylinder", "sphere"):
+            keys = {"box": ("size",), "cylinder": ("radius", "length"),
+                    "sphere": ("radius",)}[shape.tag]
+            size = ()
+            for key in keys:
+                values = self._numbers(shape, key, 3 if key == "size" else 1, owner,
+                                       finite=False)
+                problem = limits.size_problem(key, values)
+                if problem:
+                    self._fail(shape, problem, owner)
+                size += values
         elif shape.tag == "mesh":
             uri = self._attr(shape, "filename", owner)
             scale = mesh_scale(shape.get("scale"))
@@ -372,8 +383,6 @@ class _Reader:
             return Geometry("mesh", scale, path, uri)
         else:
             self._fail(shape, "unknown shape: use <box>, <cylinder>, <sphere> or <mesh>", owner)
-        if min(size) <= 0:
-            self._fail(shape, "sizes must be positive, got %s" % " ".join(map(repr, size)), owner)
         return Geometry(shape.tag, size)
 
     def _joint(self, elem, links) -> Joint:
@@ -399,6 +408,9 @@ class _Reader:
             axis = self._numbers(axis_elem, "xyz", 3, owner)
             if not any(axis):
                 self._fail(axis_elem, "axis must not be zero", owner)
+            problem = limits.symmetric("xyz", axis, limits.MAX_POSITION, "")
+            if problem:   # a direction: its length must not overflow
+                self._fail(axis_elem, problem, owner)
         return Joint(name, kind, ends[0], ends[1], self._origin(elem, owner), axis)
 
     def _origin(self, elem, owner) -> Pose:
@@ -407,15 +419,20 @@ class _Reader:
             return Pose()
         xyz = self._numbers(origin, "xyz", 3, owner) if "xyz" in origin.attrib else (0.0,) * 3
         rpy = self._numbers(origin, "rpy", 3, owner) if "rpy" in origin.attrib else (0.0,) * 3
+        problem = limits.position_problem("xyz", xyz) or limits.angles_problem("rpy", rpy)
+        if problem:
+            self._fail(origin, problem, owner)
         return Pose(xyz, rpy)
 
-    def _numbers(self, elem, key, count, owner) -> tuple:
+    def _numbers(self, elem, key, count, owner, finite: bool = True) -> tuple:
+        """``count`` numbers of attribute ``key``; ``finite`` False lets NaN and inf through
+        (to a range check of limits, which names the limit)."""
         text = self._attr(elem, key, owner)
         try:
             values = tuple(float(v) for v in text.split())
         except ValueError:
             values = ()
-        if len(values) != count or not all(map(math.isfinite, values)):
+        if len(values) != count or (finite and not all(map(math.isfinite, values))):
             self._fail(elem, "%s=%r is not %s" % (key, text, "a number" if count == 1
                                                    else "%d numbers" % count), owner)
         return values

@@ -174,14 +174,40 @@ def _link_meshes(link: ElementTree.Element, colours: Dict[str, bool], base_dir: 
         mesh.attrib.pop("scale", None)
 
 
-def bullet_urdf_text(xml: str, base_dir: str) -> str:
-    """The URDF text ``xml`` with its meshes rewritten by ``bullet_meshes``; ``xml`` itself if
-    it has no mesh."""
-    robot = ElementTree.fromstring(xml)
-    if next(robot.iter("mesh"), None) is None:
-        return xml
-    bullet_meshes(robot, base_dir)
+def indent(element: ElementTree.Element, level: int = 0) -> None:
+    """Put each element on a line of its own, in place (ElementTree.indent, which Python 3.8
+    lacks). Only white space between elements changes: a text or tail that holds anything
+    else is left as it is."""
+    children = list(element)
+    if not children:
+        return
+    inner = "\n" + "  " * (level + 1)
+    if not (element.text or "").strip():
+        element.text = inner
+    for child in children:
+        indent(child, level + 1)
+        if not (child.tail or "").strip():
+            child.tail = inner
+    if not (children[-1].tail or "").strip():
+        children[-1].tail = "\n" + "  " * level
+
+
+def urdf_text(robot: ElementTree.Element) -> str:
+    """The URDF text of ``robot`` for pybullet: one element a line. pybullet's URDF importer
+    reads a file through a line buffer of a few KB and joins the pieces with line breaks, so
+    a long line (a URDF of ~40 links written on one line) is cut inside a name or a number
+    and the file does not load ("Cannot load URDF file")."""
+    indent(robot)
     return ElementTree.tostring(robot, encoding="unicode")
+
+
+def bullet_urdf_text(xml: str, base_dir: str) -> str:
+    """The URDF text ``xml`` with its meshes rewritten by ``bullet_meshes``, one element a
+    line (``urdf_text``)."""
+    robot = ElementTree.fromstring(xml)
+    if next(robot.iter("mesh"), None) is not None:
+        bullet_meshes(robot, base_dir)
+    return urdf_text(robot)
 
 
 def absolute_meshes(xml: str, base_dir: str, known: Optional[Dict[str, str]] = None) -> str:

@@ -21,6 +21,7 @@ from .bullet import pybullet, quiet_output
 from .applied_forces import EffortJob, WrenchJob
 from .urdf_file import read_urdf_text
 from .urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths
+from . import limits
 from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
 from .reference_frames import Pose, Twist
@@ -73,9 +74,35 @@ EFFORT_JOINT_MAX_VELOCITY = 1e4
 IDLE_WHEEL_RATE = 0.05        # rad/s: a robot whose wheels turn slower stands (its brake holds)
 
 
-def _finite_state(name: str, pose: Pose, twist: Twist) -> None:
+def _checked_state(name: str, pose: Pose, twist: Twist) -> Tuple[Pose, Twist]:
+    """(pose, twist) with the quaternion normalised (all-zero: identity); RequestError naming
+    the field and the limit for NaN, inf or a number beyond limits."""
     if not rf.finite(pose[0], pose[1], twist[0], twist[1]):
         raise RequestError("%s: NaN or infinite value in the pose or twist" % name)
+    problem = (limits.position_problem("pose.position", pose[0])
+               or limits.twist_problem("twist", twist))
+    if problem:
+        raise RequestError("%s: %s" % (name, problem))
+    return ((tuple(float(v) for v in pose[0]), limits.unit_quaternion(pose[1])),
+            (tuple(float(v) for v in twist[0]), tuple(float(v) for v in twist[1])))
+
+
+def _checked_world_state(name: str, pose: Pose, twist: Twist) -> None:
+    """RequestError if a state given in a reference frame lands beyond limits in the world."""
+    problem = (limits.position_problem("pose.position (in the world)", pose[0])
+               or limits.twist_problem("twist (in the world)", twist))
+    if problem:
+        raise RequestError("%s: %s" % (name, problem))
+
+
+def _check_times(what: str, start_ns, duration_ns) -> None:
+    """RequestError unless start and duration (ns) are whole numbers within limits."""
+    for field, value in (("start_time", start_ns), ("duration", duration_ns)):
+        problem = limits.outside(field, value, -limits.MAX_DURATION_NS, limits.MAX_DURATION_NS,
+                                 "ns")
+        if problem or value != int(value):
+            raise RequestError("%s: %s" % (what, problem or "%s %r ns must be a whole number"
+                                           % (field, value)))
 
 
 class WorldControl:
@@ -123,13 +150,14 @@ class WorldControl:
     def set_model_state(self, name: str, pose: Pose, twist: Twist, reference: str = "") -> None:
         """Teleport model ``name`` (quaternion normalised, all-zero = identity) and give it
         ``twist``; with a reference frame the pose is in that frame and the twist rotated."""
-        _finite_state("SetModelState", pose, twist)
+        pose, twist = _checked_state("SetModelState", pose, twist)
         model = self._model(name, "SetModelState")
         frame = self._frame(reference, "SetModelState")
-        pose = (tuple(pose[0]), rf.normalized(pose[1]))
         if frame is not None:
             pose = rf.compose(frame[0], pose)
             twist = rf.model_twist_to_world(twist, frame[0][1])
+            _checked_world_state("SetModelState", pose, twist)
+            pose = (pose[0], limits.unit_quaternion(pose[1]))
         model.set_state(pose, (tuple(twist[0]), tuple(twist[1])))
 
     def _link(self, scoped: str, what: str):
@@ -153,16 +181,17 @@ class WorldControl:
         return pose, twist
 
     def set_link_state(self, scoped: str, pose: Pose, twist: Twist, reference: str = "") -> None:
-        _finite_state("SetLinkState", pose, twist)
+        pose, twist = _checked_state("SetLinkState", pose, twist)
         model, link = self._link(scoped, "SetLinkState")
         if link.body is None or link.index >= 0:
             raise RequestError("SetLinkState: link %r cannot be moved on its own here (it is "
                                "static or jointed): move its model" % scoped)
         frame = self._frame(reference, "SetLinkState")
-        pose = (tuple(pose[0]), rf.normalized(pose[1]))
         if frame is not None:
             pose = rf.compose(frame[0], pose)
             twist = rf.link_twist_to_world(twist, frame[1])
+            _checked_world_state("SetLinkState", pose, twist)
+            pose = (pose[0], limits.unit_quaternion(pose[1]))
         model.set_link_state(link, pose, twist)
 
     def model_states(self) -> List[Tuple[str, Pose, Twist]]:
@@ -231,7 +260,10 @@ class WorldControl:
             os.unlink(path)
 
     def _load_urdf(self, name: str, urdf: str, pose: Pose) -> WorldModel:
+        """A model of the plain URDF text ``urdf`` loaded at ``pose``, written for pybullet
+        one element a line (urdf_meshes.bullet_urdf_text: it cuts long lines)."""
         cid = self.sim.physics.client
+        source = urdf
         collisions = urdf_collision_names(urdf)
         try:   # meshes as the Wavefront files pybullet loads (urdf_meshes)
             urdf = bullet_urdf_text(urdf, os.getcwd())
@@ -263,6 +295,7 @@ class WorldControl:
                                                physicsClientId=cid)
         model = model_of_urdf_body(name, body, cid, "spawned", spawn_pose=pose,
                                    collisions=collisions)
+        model.rebuild_hook = lambda: self._load_urdf(name, source, pose)   # state went NaN
         model.set_state(pose, rf.ZERO_TWIST)
         return model
 
@@ -330,6 +363,12 @@ class WorldControl:
         if not rf.finite(point, force, torque):
             raise RequestError("ApplyBodyWrench: NaN or infinite value in the wrench or the "
                                "reference point")
+        problem = (limits.symmetric("wrench.force", force, limits.MAX_FORCE, "N")
+                   or limits.symmetric("wrench.torque", torque, limits.MAX_FORCE, "N m")
+                   or limits.position_problem("reference_point", point))
+        if problem:
+            raise RequestError("ApplyBodyWrench: %s" % problem)
+        _check_times("ApplyBodyWrench", start_ns, duration_ns)
         if link.body is None:
             raise RequestError("ApplyBodyWrench: body %r is static: a wrench cannot move it"
                                % body)
@@ -384,6 +423,11 @@ class WorldControl:
         ``duration_ns`` (< 0: until clear_joint_forces)."""
         if not math.isfinite(effort):
             raise RequestError("ApplyJointEffort: NaN or infinite effort")
+        problem = limits.outside("effort", effort, -limits.MAX_FORCE, limits.MAX_FORCE,
+                                 "N m (N for a prismatic joint)")
+        if problem:
+            raise RequestError("ApplyJointEffort: %s" % problem)
+        _check_times("ApplyJointEffort", start_ns, duration_ns)
         model, body, index, info = self._joint(joint, "ApplyJointEffort")
         pybullet.changeDynamics(body, index, maxJointVelocity=EFFORT_JOINT_MAX_VELOCITY,
                                 physicsClientId=self.sim.physics.client)
@@ -448,6 +492,11 @@ class WorldControl:
             raise RequestError("SetLinkProperties: the inertia tensor (ixx %g iyy %g izz %g "
                                "ixy %g ixz %g iyz %g) must be positive definite"
                                % (ixx, iyy, izz, ixy, ixz, iyz))
+        problem = (limits.mass_problem(mass)
+                   or limits.inertia_problem((ixx, iyy, izz), (ixy, ixz, iyz))
+                   or limits.position_problem("com.position", com))
+        if problem:
+            raise RequestError("SetLinkProperties: %s" % problem)
         _, present, rotation, _ = self._inertial(link)
         if max(abs(a - b) for a, b in zip(com, present)) > COM_TOLERANCE:
             raise RequestError("SetLinkProperties: the centre of mass cannot be moved here: keep "
@@ -482,6 +531,12 @@ class WorldControl:
                                "different lengths")
         if not rf.finite(positions):
             raise RequestError("SetModelConfiguration: NaN or infinite joint position")
+        problem = limits.first(limits.outside("joint_positions[%d]" % i, v,
+                                              -limits.MAX_JOINT_POSITION,
+                                              limits.MAX_JOINT_POSITION, "rad or m")
+                               for i, v in enumerate(positions))
+        if problem:
+            raise RequestError("SetModelConfiguration: %s" % problem)
         cid = self.sim.physics.client
         movable: Dict[str, Tuple[int, int]] = {}
         for part in model.parts:
@@ -531,10 +586,13 @@ class WorldControl:
             raise RequestError("setLightProperties: Requested light %s not found!" % name)
         if not rf.finite(diffuse, specular, attenuation, direction, pose[0], pose[1]):
             raise RequestError("setLightProperties: NaN or infinite value in the request")
+        problem = limits.position_problem("pose.position", pose[0])
+        if problem:
+            raise RequestError("setLightProperties: %s" % problem)
         light.cast_shadows = bool(cast_shadows)
         light.diffuse = tuple(float(v) for v in diffuse)
         light.specular = tuple(float(v) for v in specular)
         light.attenuation_constant, light.attenuation_linear, light.attenuation_quadratic = (
             float(v) for v in attenuation)
         light.direction = tuple(float(v) for v in direction)
-        light.pose = (tuple(float(v) for v in pose[0]), rf.normalized(pose[1]))
+        light.pose = (tuple(float(v) for v in pose[0]), limits.unit_quaternion(pose[1]))

@@ -8,6 +8,7 @@ can say where it is, be teleported with a twist, be put back where it was spawne
 Poses are ((x, y, z), (qx, qy, qz, qw)) in the world frame; twists ((vx, vy, vz), (wx, wy, wz))
 in m/s and rad/s, world frame (reference_frames).
 """
+import math
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Tuple
 from xml.etree import ElementTree
@@ -82,6 +83,10 @@ class WorldModel:
     geoms: List[str] = field(default_factory=list)
     reset_hook: Optional[Callable[[], None]] = None   # the robot's own reset
     remove_hook: Optional[Callable[[], None]] = None  # the robot's own removal
+    # Fresh bodies for a model whose physics state went NaN (rebuild): a new WorldModel of the
+    # same spec whose parts and links replace these (a robot's hook reloads its own body).
+    rebuild_hook: Optional[Callable[[], "WorldModel"]] = None
+    on_rebuild: Optional[Callable[[str], None]] = None  # told the name after a rebuild
     _pose: Pose = rf.IDENTITY        # the model frame of a model without a movable body
 
     def __post_init__(self):
@@ -138,11 +143,55 @@ class WorldModel:
                 return link
         raise KeyError(name)
 
+    def sound(self) -> bool:
+        """Whether the pose, velocity and joint states of every movable body are finite.
+
+        A body that once held a NaN is beyond repair in place: Bullet takes an object whose
+        bounding box is not finite out of the simulation for good (it then falls through
+        every floor, and rays pass it by), and finite values written back do not undo that.
+        Only a new body does (rebuild)."""
+        for part in self.parts:
+            if not part.movable:
+                continue
+            cid = self.client
+            pos, orn = pybullet.getBasePositionAndOrientation(part.body, physicsClientId=cid)
+            lin, ang = pybullet.getBaseVelocity(part.body, physicsClientId=cid)
+            values = list(pos) + list(orn) + list(lin) + list(ang)
+            joints = range(pybullet.getNumJoints(part.body, physicsClientId=cid))
+            for state in pybullet.getJointStates(part.body, joints, physicsClientId=cid) or ():
+                values.extend(state[:2])
+            if not all(math.isfinite(v) for v in values):
+                return False
+        return True
+
+    def rebuild(self) -> bool:
+        """Replace the bodies of a model that is not ``sound`` by new ones built from its spec
+        (at its spawn pose); whatever the world API applied to it goes (``on_rebuild``).
+        False if there is nothing to rebuild from (it is left as it is)."""
+        if self.rebuild_hook is None:
+            return False
+        old = [p.body for p in self.parts]
+        fresh = self.rebuild_hook()
+        if self.remove_hook is None:     # a robot's hook has replaced its own body
+            for body in old:
+                pybullet.removeBody(body, physicsClientId=self.client)
+        self.parts, self.links = fresh.parts, fresh.links
+        if self.on_rebuild is not None:
+            self.on_rebuild(self.name)
+        return True
+
+    def _repaired(self) -> None:
+        """Rebuild the model first if its physics state is no longer finite."""
+        if not self.sound():
+            self.rebuild()
+
     # --- changing ----------------------------------------------------------------------------
 
     def set_state(self, pose: Pose, twist: Twist) -> None:
         """Teleport the model frame to ``pose``; every movable body gets ``twist`` (as Gazebo
-        writes the model's velocity into every link; a zero twist stops it)."""
+        writes the model's velocity into every link; a zero twist stops it). A model whose
+        state went NaN is rebuilt first (``sound``)."""
+        self._repaired()
         self._pose = pose
         for part in self.parts:
             pos, orn = rf.compose(pose, part.in_model)
@@ -153,14 +202,19 @@ class WorldModel:
                                            physicsClientId=self.client)
 
     def set_link_state(self, link: LinkPart, pose: Pose, twist: Twist) -> None:
-        """Teleport one link (the base of a movable body) to ``pose`` with ``twist``."""
+        """Teleport one link (the base of a movable body) to ``pose`` with ``twist`` (a model
+        whose state went NaN is rebuilt first, its links then found by name)."""
+        if not self.sound() and self.rebuild():
+            link = self.link(link.name)
         body_pose = rf.compose(pose, rf.inverse(link.in_body))
         pybullet.resetBasePositionAndOrientation(link.body, *body_pose,
                                                  physicsClientId=self.client)
         pybullet.resetBaseVelocity(link.body, twist[0], twist[1], physicsClientId=self.client)
 
     def reset(self) -> None:
-        """Back to the spawn pose, at rest (joints at 0)."""
+        """Back to the spawn pose, at rest (joints at 0); a model whose state went NaN is
+        rebuilt first (``sound``)."""
+        self._repaired()
         if self.reset_hook is not None:
             self.reset_hook()
             return
@@ -185,6 +239,9 @@ class ModelRegistry:
 
     def __init__(self):
         self._models: Dict[str, WorldModel] = {}   # insertion order is the world order
+        # told the name of a model whose bodies were rebuilt (WorldModel.rebuild): the
+        # simulation forgets what the world API applied to the old bodies
+        self.on_rebuild: Optional[Callable[[str], None]] = None
 
     def names(self) -> List[str]:
         return list(self._models)
@@ -203,7 +260,13 @@ class ModelRegistry:
         """Append ``model``; RequestError if its name is taken."""
         if model.name in self._models:
             raise RequestError("SpawnModel: Failure - entity already exists.")
+        if model.on_rebuild is None:
+            model.on_rebuild = self._rebuilt
         self._models[model.name] = model
+
+    def _rebuilt(self, name: str) -> None:
+        if self.on_rebuild is not None:
+            self.on_rebuild(name)
 
     def remove(self, name: str) -> WorldModel:
         """Remove model ``name`` (and its bodies); KeyError if there is none."""
@@ -273,8 +336,20 @@ def models_of_world(world: World, bodies: Dict[str, int], cid: int,
                 links.append(LinkPart(local, body=body, in_body=in_body))
         geoms = [s.name.rsplit("::", 1)[1] for s in shapes if s.collision]
         out.append(WorldModel(spec.name, spec.static, source, parts, links, model_pose, cid,
-                              joints=list(spec.joints), geoms=geoms))
+                              joints=list(spec.joints), geoms=geoms,
+                              rebuild_hook=_sdf_rebuilder(world, spec.name, cid, source)))
     return out
+
+
+def _sdf_rebuilder(world: World, name: str, cid: int, source: str
+                   ) -> Callable[[], WorldModel]:
+    """A rebuild_hook: model ``name`` of ``world`` built again, alone, at its spawn pose."""
+    def rebuild() -> WorldModel:
+        from .world_bullet import build_world
+        alone = World(world.name, world.path, (name,), world.model_shapes(name),
+                      (world.model(name),))
+        return models_of_world(alone, build_world(alone, cid), cid, source)[0]
+    return rebuild
 
 
 LUMP = "_fixed_joint_lump__"

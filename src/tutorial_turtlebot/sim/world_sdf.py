@@ -28,6 +28,7 @@ from xml.parsers import expat
 import numpy as np
 
 from ..errors import UserError, WorldError
+from . import limits
 from .asset_uri import AssetError, model_sdf_file, resolve_uri
 from .kinematics import matrix_from_rpy, rpy_from_matrix
 from .package_data import data_dir
@@ -368,12 +369,14 @@ class _Loader:
 
     # numbers
 
-    def floats(self, node: _Node, count: int) -> Tuple[float, ...]:
+    def floats(self, node: _Node, count: int, finite: bool = True) -> Tuple[float, ...]:
+        """``count`` numbers of ``node``'s text; ``finite`` False lets NaN and inf through
+        (to a range check of limits, which names the limit)."""
         try:
             values = tuple(float(v) for v in node.text.split())
         except ValueError:
             values = ()
-        if len(values) != count or not all(math.isfinite(v) for v in values):
+        if len(values) != count or (finite and not all(math.isfinite(v) for v in values)):
             raise self.fail(node, "<%s> needs %d number%s, got %r"
                             % (node.tag, count, "s" if count > 1 else "", node.text))
         return values
@@ -382,9 +385,10 @@ class _Loader:
         node = parent.child(tag)
         if node is None:
             return default
-        values = self.floats(node, count)
-        if not all(v > 0 for v in values):
-            raise self.fail(node, "<%s> must be positive, got %r" % (tag, node.text))
+        values = self.floats(node, count, finite=False)
+        problem = limits.size_problem("<%s>" % tag, values)
+        if problem:
+            raise self.fail(node, problem)
         return values
 
     def flag(self, node: Optional[_Node]) -> bool:
@@ -409,6 +413,10 @@ class _Loader:
         x, y, z, roll, pitch, yaw = self.floats(node, 6)
         if node.attrib.get("degrees", "false").lower() in ("true", "1"):
             roll, pitch, yaw = (math.radians(a) for a in (roll, pitch, yaw))
+        problem = (limits.position_problem("<pose>", (x, y, z))
+                   or limits.angles_problem("<pose>", (roll, pitch, yaw)))
+        if problem:
+            raise self.fail(node, problem)
         return (x, y, z, roll, pitch, yaw)
 
     # structure
@@ -533,18 +541,21 @@ class _Loader:
         mass = Inertial.mass
         mass_node = node.child("mass")
         if mass_node is not None:
-            mass = self.floats(mass_node, 1)[0]
-            if not mass > 0:
-                raise self.fail(mass_node, "<mass> must be positive, got %r" % mass_node.text)
+            mass = self.floats(mass_node, 1, finite=False)[0]
+            problem = limits.mass_problem(mass, field="<mass>")
+            if problem:
+                raise self.fail(mass_node, problem)
         inertia = list(Inertial.inertia)
         inertia_node = node.child("inertia")
         if inertia_node is not None:
-            for i, tag in enumerate(("ixx", "iyy", "izz", "ixy", "ixz", "iyz")):
+            for i, tag in enumerate(limits.INERTIA_NAMES):
                 value = inertia_node.child(tag)
                 if value is not None:
-                    inertia[i] = self.floats(value, 1)[0]
-            if not all(v > 0 for v in inertia[:3]):
-                raise self.fail(inertia_node, "<inertia> ixx, iyy, izz must be positive")
+                    inertia[i] = self.floats(value, 1, finite=False)[0]
+            problem = limits.inertia_problem(inertia[:3], inertia[3:], names=tuple(
+                "<inertia> %s" % n for n in limits.INERTIA_NAMES))
+            if problem:
+                raise self.fail(inertia_node, problem)
         return Inertial(mass, self.pose(node), tuple(inertia))
 
     def friction(self, collision: _Node) -> float:
@@ -554,9 +565,10 @@ class _Loader:
             node = node.child(tag)
             if node is None:
                 return 1.0
-        mu = self.floats(node, 1)[0]
-        if mu < 0:
-            raise self.fail(node, "<mu> must not be negative, got %r" % node.text)
+        mu = self.floats(node, 1, finite=False)[0]
+        problem = limits.outside("<mu>", mu, 0.0, limits.MAX_FRICTION)
+        if problem:
+            raise self.fail(node, problem)
         return mu
 
     def element(self, node: _Node, parent: Pose, scope: str, static: bool) -> Optional[Shape]:
@@ -582,7 +594,7 @@ class _Loader:
             size = self.positive(geo, "size", 2, (1.0, 1.0))
             normal_node = geo.child("normal")
             normal = self.floats(normal_node, 3) if normal_node is not None else (0.0, 0.0, 1.0)
-            length = math.sqrt(sum(v * v for v in normal))
+            length = math.hypot(*normal)     # no overflow for 1e200
             if length == 0:
                 raise self.fail(normal_node, "<normal> must not be zero")
             pose = compose(pose, _normal_pose([v / length for v in normal]))
@@ -614,9 +626,10 @@ class _Loader:
         scale = (1.0, 1.0, 1.0)
         scale_node = geo.child("scale")
         if scale_node is not None:
-            scale = self.floats(scale_node, 3)
-            if not all(v != 0 for v in scale):
-                raise self.fail(scale_node, "<scale> must not be zero, got %r" % scale_node.text)
+            scale = self.floats(scale_node, 3, finite=False)
+            problem = limits.scale_problem(scale, "<scale>")
+            if problem:
+                raise self.fail(scale_node, problem)
         try:
             path = resolve_uri(uri_node.text, self.base_dir)
             load_mesh(path, scale)
@@ -626,6 +639,10 @@ class _Loader:
 
     def polygon(self, polyline: _Node) -> Tuple[Tuple[float, float], ...]:
         points = [self.floats(p, 2) for p in polyline.all("point")]
+        for node, point in zip(polyline.all("point"), points):
+            problem = limits.position_problem("<point>", point)
+            if problem:
+                raise self.fail(node, problem)
         cleaned = _clean_polygon([(x, y) for x, y in points])
         if cleaned is None:
             raise self.fail(polyline, "<polyline> must be a simple polygon of at least 3 corners "
