@@ -13,6 +13,7 @@ then goes to rospy's topic or service handler exactly as rospy would pass it. A 
 connection is closed; refusals are logged in one line, at most once per ``LOG_PERIOD``, with
 the peer's address and how many were refused since the last line.
 """
+import socket
 import struct
 import threading
 import time
@@ -57,7 +58,7 @@ def _read_exactly(sock, count: int, deadline: float, clock, timeout: float) -> b
         sock.settimeout(remaining)
         try:
             chunk = sock.recv(min(count - len(data), 65536))
-        except TimeoutError:
+        except socket.timeout:     # TimeoutError from Python 3.10 on
             continue  # the deadline check above refuses it
         if not chunk:
             raise HandshakeRefused("closed after %d bytes of its header" % len(data))
