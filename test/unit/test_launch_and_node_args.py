@@ -14,8 +14,11 @@ from tutorial_turtlebot.gazebo.single_instance import running_simulator
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def dump_params(launch, *args):
-    """The parameters roslaunch would set for ``launch/<launch> args``, with no master."""
+LAUNCH_FILES = sorted(f for f in os.listdir(os.path.join(ROOT, "launch")) if f.endswith(".launch"))
+
+
+def roslaunch(option, launch, *args):
+    """roslaunch's output for ``roslaunch OPTION launch/<launch> args``, with no master."""
     if shutil.which("roslaunch") is None:
         pytest.skip("'roslaunch' not found: install ROS 1 (tools/setup.sh) or source its setup")
     env = dict(os.environ, ROS_MASTER_URI="http://localhost:9")
@@ -24,10 +27,35 @@ def dump_params(launch, *args):
                                                     env.get("PYTHONPATH")) if p)
     env["PATH"] = os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", "")
     env.pop("TURTLEBOT3_MODEL", None)
-    run = subprocess.run(["roslaunch", "--dump-params", os.path.join(ROOT, "launch", launch)]
+    run = subprocess.run(["roslaunch", option, os.path.join(ROOT, "launch", launch)]
                          + list(args), capture_output=True, text=True, timeout=60, env=env)
     assert run.returncode == 0, run.stdout + run.stderr
-    return yaml.safe_load(run.stdout) or {}
+    return run.stdout
+
+
+def dump_params(launch, *args):
+    """The parameters roslaunch would set for ``launch/<launch> args``, with no master."""
+    return yaml.safe_load(roslaunch("--dump-params", launch, *args)) or {}
+
+
+@pytest.mark.parametrize("launch", LAUNCH_FILES)
+def test_ros_args_lists_no_optional_argument_as_required(launch):
+    """roslaunch --ros-args calls an argument required when its default is empty: every
+    argument here has a default that says what it means (auto, /, ...)."""
+    listing = roslaunch("--ros-args", launch)
+    assert "Required Arguments" not in listing, listing
+    assert "Optional Arguments" in listing or "No arguments" in listing
+
+
+def test_auto_means_what_empty_meant():
+    """x_pos:=auto (the default) sets no spawn, as x_pos:= did; a value is passed on."""
+    plain = dump_params("sim.launch")
+    assert "/gazebo/x_pos" not in plain and "/gazebo/camera" not in plain
+    assert "/gazebo/lidar_samples" not in plain and "/gazebo/robot_name" not in plain
+    assert dump_params("sim.launch", "x_pos:=") == plain
+    given = dump_params("sim.launch", "x_pos:=1.5", "camera:=false", "lidar_samples:=24")
+    assert given["/gazebo/x_pos"] == 1.5 and given["/gazebo/camera"] is False
+    assert given["/gazebo/lidar_samples"] == 24
 
 
 def test_teleop_launch_leaves_the_global_model_alone():

@@ -16,8 +16,8 @@ USAGE = ("usage: robot_description MODEL [CAMERA] [--new-sim]  (MODEL: burger, w
 
 def description_text(model: str, camera: str = "false") -> str:
     """The checked URDF text of ``model``; UserError for a bad model, camera flag or file."""
-    if camera.lower() not in ("true", "false", ""):
-        raise UserError("camera must be true, false or empty, got %r" % camera)
+    if camera.lower() not in ("true", "false", "", "auto"):
+        raise UserError("camera must be true, false or auto (the URDF's), got %r" % camera)
     path = urdf_path(model, camera.lower() == "true")
     read_urdf(path)  # a broken file is named here, not deep inside robot_state_publisher
     with open(path, encoding="utf-8") as f:

@@ -54,7 +54,8 @@ from rosgraph_msgs.msg import Clock
 from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
-from . import tcpros_guard
+from . import tcpros_guard, unreachable_publishers
+from .master_watch import MasterWatch
 from .world_api import WorldApi
 from ..errors import UserError
 from ..sim.kinematics import yaw_from_quat
@@ -345,6 +346,8 @@ def main() -> None:
     # Before the first topic and service: a client that stalls in its handshake (or is not a
     # ROS client at all) must not keep the others out.
     tcpros_guard.install()
+    # Before the first subscription: a publisher it cannot reach is named in one line.
+    unreachable_publishers.install()
     _own_the_clock()
     try:
         config = read_config()
@@ -378,6 +381,8 @@ def main() -> None:
         rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
                       math.degrees(spec.hfov), spec.rate, sim.camera.renderer_name)
     node = SimNode(sim, real_time_factor, paused, status_period)
+    # A restarted master is told again of every topic, service and robot description.
+    MasterWatch(lambda: [robot.namespace for robot in list(sim.robots.values())]).start()
 
     def request_stop(_signum, _frame):
         node.stop_requested = True
