@@ -28,8 +28,13 @@ Measured (Burger in turtlebot3_world unless said):
                     alone, bench/multi_robot.py): the same two figures, and the same robots
                     stepped without ROS (physics alone; physics and every sensor computed)
 
+  soak              bench/soak.py: 30 sim minutes as fast as possible with four Burgers, every
+                    topic subscribed, spawns and deletes, resets, NaN and 1e9 cmd_vel, pauses:
+                    sim RSS at the start and the end, growth over the last third (not in the
+                    default groups: it takes 15 to 20 wall minutes)
+
 ``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, jitter, fast, world,
-subscribers, camera, render, meshes, multi); the default is all of them.
+subscribers, camera, render, meshes, multi, soak); the default is all of them but soak.
 """
 import argparse
 import os
@@ -481,20 +486,34 @@ def median(values):
 
 GROUPS = ("startup", "realtime", "jitter", "fast", "world", "subscribers", "camera", "render",
           "meshes", "multi")
+EXTRA_GROUPS = ("soak",)   # long: run only when named in --only
+
+
+def measure_soak():
+    """bench/soak.py's last line: (RSS MB at the start, at the end, growth over the last
+    third)."""
+    import re
+    out = subprocess.run([sys.executable, os.path.join(HERE, "soak.py")], stdout=subprocess.PIPE,
+                         stderr=subprocess.DEVNULL, text=True, check=False).stdout
+    found = re.search(r"RSS ([\d.]+) MB at the first sample, ([\d.]+) MB at the end; over the "
+                      r"last third \([^)]*\) it grew (-?[\d.]+) MB", out)
+    if not found:
+        raise RuntimeError("soak.py gave no result: %s" % out[-500:])
+    return tuple(float(v) for v in found.groups())
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=3, help="runs per figure (median)")
     parser.add_argument("--only", default=",".join(GROUPS),
-                        help="comma-separated groups of rows to run (default: all): "
-                        + ", ".join(GROUPS))
+                        help="comma-separated groups of rows to run (default: all but "
+                        "soak, which takes 15 to 20 minutes): " + ", ".join(GROUPS + EXTRA_GROUPS))
     args = parser.parse_args()
     only = [g.strip() for g in args.only.split(",") if g.strip()]
-    unknown = [g for g in only if g not in GROUPS]
+    unknown = [g for g in only if g not in GROUPS + EXTRA_GROUPS]
     if unknown or not only:
         parser.error("--only: unknown group %r (groups: %s)"
-                     % (",".join(unknown), ", ".join(GROUPS)))
+                     % (",".join(unknown), ", ".join(GROUPS + EXTRA_GROUPS)))
     if args.runs < 1:
         parser.error("--runs must be at least 1")
     rows = []
@@ -572,6 +591,11 @@ def main():
         mesh_rows(args.runs, row)
     if "multi" in only:
         multi_rows(args.runs, row)
+    if "soak" in only:   # one run: it is long
+        first, last, growth = measure_soak()
+        row("soak, 30 sim min with churn: sim RSS at the start / at the end", "%.0f / %.0f"
+            % (first, last), "MB")
+        row("soak: RSS growth over the last third", "%.2f" % growth, "MB", "< 2 MB")
     print("(%.0f s; load average now %s)" % (time.time() - started,
                                              " ".join("%.2f" % v for v in os.getloadavg())),
           flush=True)

@@ -19,7 +19,7 @@ from .bullet import pybullet, quiet_output
 from .camera import disable_egl, enable_egl
 from .urdf_file import RobotDescription
 from .urdf_meshes import bullet_meshes, urdf_text
-from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP, build_world
+from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP, body_pool, build_world
 from .world_sdf import World
 from ..errors import UserError
 
@@ -162,18 +162,25 @@ class RobotBody:
             tmp = _urdf_for_bullet(path)
             with open(tmp, encoding="utf-8") as f:
                 self._bullet_urdf = f.read()
+            os.unlink(tmp)
+        pool = body_pool(self.physics)   # a deleted robot of the same URDF is reused
+        parked = pool.take(("robot", self._bullet_urdf))
+        if parked:
+            robot = parked[0]
         else:
             fd, tmp = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_")
             with os.fdopen(fd, "w", encoding="utf-8") as f:
                 f.write(self._bullet_urdf)
-        try:
-            with quiet_output():
-                robot = pybullet.loadURDF(
-                    tmp, flags=(pybullet.URDF_MERGE_FIXED_LINKS | pybullet.URDF_USE_INERTIA_FROM_FILE
-                                | pybullet.URDF_USE_IMPLICIT_CYLINDER),
-                    physicsClientId=cid)
-        finally:
-            os.unlink(tmp)
+            try:
+                with quiet_output():
+                    robot = pybullet.loadURDF(
+                        tmp, flags=(pybullet.URDF_MERGE_FIXED_LINKS
+                                    | pybullet.URDF_USE_INERTIA_FROM_FILE
+                                    | pybullet.URDF_USE_IMPLICIT_CYLINDER),
+                        physicsClientId=cid)
+            finally:
+                os.unlink(tmp)
+            pool.remember([robot])
         for link in range(-1, pybullet.getNumJoints(robot, physicsClientId=cid)):
             pybullet.setCollisionFilterGroupMask(robot, link, self.collision_bit,
                                                  ALL_COLLISION_GROUPS, physicsClientId=cid)
@@ -285,8 +292,11 @@ class RobotBody:
         self.reset_robot()
 
     def remove(self) -> None:
-        """Take the robot out of the world."""
-        pybullet.removeBody(self.robot, physicsClientId=self.client)
+        """Take the robot out of the world (parked for reuse: world_bullet.BodyPool)."""
+        pool = body_pool(self.physics)
+        if not pool.park(("robot", self._bullet_urdf), [self.robot]):
+            pybullet.removeBody(self.robot, physicsClientId=self.client)
+            pool.forget([self.robot])
         self.physics.give_back_robot_bit(self.collision_bit)
 
     # --- state -----------------------------------------------------------------------------------

@@ -26,7 +26,8 @@ from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
 from .reference_frames import Pose, Twist
 from .spawn_request import parse_spawn, placed
-from .world_bullet import MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK, build_world
+from .world_bullet import (MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK, body_pool,
+                           build_world, place_world_bodies, reused_world_bodies)
 from .world_lights import Light, read_lights
 from .world_models import (LinkPart, ModelRegistry, RequestError, WorldModel, check_model_name,
                            model_of_urdf_body, models_of_world, urdf_collision_names)
@@ -112,6 +113,9 @@ class WorldControl:
         self.sim = sim
         self._get_counts = {}
         self._lights: Optional[Dict[str, Light]] = None   # read from the world file when asked
+        # spawned model -> (its text, its bodies): delete parks them for the next spawn of that
+        # text (world_bullet.BodyPool: pybullet frees little of a removed body)
+        self._spawned: Dict[str, Tuple[tuple, List[int]]] = {}
 
     @property
     def models(self) -> ModelRegistry:
@@ -236,12 +240,23 @@ class WorldControl:
         if request.robot is not None:
             self._add_robot(name, request.robot, pose, robot_namespace)
             return
+        pool = body_pool(self.sim.physics)
         if request.world is not None:
-            bodies = build_world(request.world, cid)
+            key = ("sdf", xml)
+            reused = pool.take(key)
+            if reused is not None:
+                bodies = reused_world_bodies(request.world, reused)
+                place_world_bodies(request.world, bodies, cid)
+            else:
+                bodies = build_world(request.world, cid)
+                pool.remember(list(bodies.values()))
             model = models_of_world(request.world, bodies, cid, source="spawned")[0]
+            built = list(dict.fromkeys(bodies.values()))
         else:
             model = self._load_urdf(name, request.urdf, pose)
+            key, built = self._urdf_key(request.urdf), [model.parts[0].body]
         self.models.add(model)
+        self._spawned[name] = (key, built)
 
     def _add_robot(self, name: str, urdf: str, pose: Pose, namespace: str) -> None:
         """A robot with its URDF's plugins; its <gazebo> blocks are checked before anything
@@ -259,6 +274,12 @@ class WorldControl:
         finally:
             os.unlink(path)
 
+    @staticmethod
+    def _urdf_key(urdf: str) -> tuple:
+        """The BodyPool key of a plain URDF's body (relative meshes: from the working
+        directory)."""
+        return ("urdf", urdf, os.getcwd())
+
     def _load_urdf(self, name: str, urdf: str, pose: Pose) -> WorldModel:
         """A model of the plain URDF text ``urdf`` loaded at ``pose``, written for pybullet
         one element a line (urdf_meshes.bullet_urdf_text: it cuts long lines)."""
@@ -269,20 +290,11 @@ class WorldControl:
             urdf = bullet_urdf_text(urdf, os.getcwd())
         except UserError as err:
             raise RequestError("SpawnModel: Failure - %s" % err) from None
-        fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_spawn_")
-        try:
-            with os.fdopen(fd, "w") as f:
-                f.write(urdf)
-            try:
-                with quiet_output():
-                    body = pybullet.loadURDF(path, flags=pybullet.URDF_MERGE_FIXED_LINKS
-                                             | pybullet.URDF_USE_INERTIA_FROM_FILE,
-                                             physicsClientId=cid)
-            except pybullet.error as err:
-                raise RequestError("SpawnModel: Failure - pybullet could not load the URDF: %s"
-                                   % err) from None
-        finally:
-            os.unlink(path)
+        pool = body_pool(self.sim.physics)
+        reused = pool.take(self._urdf_key(source))
+        body = reused[0] if reused else self._new_urdf_body(urdf, cid)
+        if not reused:
+            pool.remember([body])
         for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
             pybullet.setCollisionFilterGroupMask(body, link, MOVABLE_COLLISION_GROUP,
                                                  MOVABLE_COLLISION_MASK, physicsClientId=cid)
@@ -299,9 +311,35 @@ class WorldControl:
         model.set_state(pose, rf.ZERO_TWIST)
         return model
 
+    @staticmethod
+    def _new_urdf_body(urdf: str, cid: int) -> int:
+        """A new pybullet body of URDF text ``urdf`` (as bullet_urdf_text writes it)."""
+        fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_spawn_")
+        try:
+            with os.fdopen(fd, "w") as f:
+                f.write(urdf)
+            try:
+                with quiet_output():
+                    return pybullet.loadURDF(path, flags=pybullet.URDF_MERGE_FIXED_LINKS
+                                             | pybullet.URDF_USE_INERTIA_FROM_FILE,
+                                             physicsClientId=cid)
+            except pybullet.error as err:
+                raise RequestError("SpawnModel: Failure - pybullet could not load the URDF: %s"
+                                   % err) from None
+        finally:
+            os.unlink(path)
+
     def delete(self, name: str) -> None:
-        self._model(name, "DeleteModel")  # refuses an unknown name
+        model = self._model(name, "DeleteModel")  # refuses an unknown name
         self.sim.forces.forget_model(name)   # its wrenches and efforts go with it
+        key, built = self._spawned.pop(name, (None, []))
+        bodies = list(dict.fromkeys(p.body for p in model.parts))
+        pool = body_pool(self.sim.physics)
+        # its bodies wait for the next spawn of the same text, unless they were rebuilt since
+        if key is not None and bodies == built and pool.park(key, bodies):
+            model.parts = []
+        elif key is not None:   # (a robot's body is its RobotBody's to park)
+            pool.forget(bodies + built)
         self.models.remove(name)
 
     # --- physics -----------------------------------------------------------------------------
