@@ -8,7 +8,9 @@ import unittest
 import numpy as np
 import rospy
 import rostest
-from gazebo_msgs.srv import GetWorldProperties
+from gazebo_msgs.msg import ModelState
+from gazebo_msgs.srv import GetWorldProperties, SetModelState, SpawnModel
+from geometry_msgs.msg import Pose
 from sensor_msgs.msg import LaserScan
 
 from sim_test_support import WAIT, Driver, arena_wall_distance, box_outside_arena, yaw_of
@@ -67,6 +69,35 @@ class GazeboWorldMeshesTest(unittest.TestCase):
         self.assertLess(worst, 0.01, "through the mesh wall by %.3f m" % worst)
         self.assertGreater(worst, -0.03, "stopped %.3f m short of the mesh wall" % -worst)
         self.assertLess(abs(pose.position.z), 0.05, "tipped or climbed the wall")
+
+    def test_4_a_spawned_include_of_an_stl_model_is_seen_where_it_stands(self):
+        """spawn_sdf_model of a model that includes model://mesh_pillar (an STL pillar, 0.2 m
+        by 0.4 m: the include's pose replaces the model's own turn) 1 m ahead of the robot,
+        put back at its spawn first: the scan straight ahead ends at the pillar's face."""
+        state = ModelState(model_name="turtlebot3_burger")
+        state.pose.position.x, state.pose.position.y = -2.0, -0.5
+        state.pose.orientation.w = 1.0
+        teleport = rospy.ServiceProxy("/gazebo/set_model_state", SetModelState)
+        self.assertTrue(teleport(model_state=state).success)
+        rospy.sleep(0.5)
+        xml = ("<sdf version='1.6'><model name='pillars'><include><uri>model://mesh_pillar"
+               "</uri><pose>0 0 0 0 0 0</pose></include></model></sdf>")
+        pose = Pose()
+        pose.position.x, pose.position.y = -1.0, -0.5
+        spawn = rospy.ServiceProxy("/gazebo/spawn_sdf_model", SpawnModel)
+        answer = spawn(model_name="pillars", model_xml=xml, initial_pose=pose)
+        self.assertTrue(answer.success, answer.status_message)
+        stamp = rospy.Time.now()
+        ahead = None
+        for _ in range(50):
+            scan = rospy.wait_for_message("/scan", LaserScan, WAIT)
+            if scan.header.stamp > stamp:
+                ahead = float(np.median([scan.ranges[0], scan.ranges[1], scan.ranges[-1]]))
+                break
+        self.assertIsNotNone(ahead)
+        # the pillar's near face 0.1 m before its centre at x -1.0; base_scan 0.032 m behind
+        # base_footprint on the Burger
+        self.assertAlmostEqual(ahead, 1.0 - 0.1 + 0.032, delta=0.04)
 
 if __name__ == "__main__":
     rostest.rosrun("tutorial_turtlebot", "gazebo_world_meshes", GazeboWorldMeshesTest)

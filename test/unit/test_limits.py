@@ -213,3 +213,22 @@ def test_limits_phrasing():
     assert limits.outside("erp", 2.0, 0.0, 1.0) == "erp 2 is outside [0, 1]"
     assert limits.outside("v", "zero", 0, 1) == "v 'zero' is outside [0, 1]"
     assert limits.scale_problem((1, 0, 1)) == "scale 0 must not be zero"
+
+
+@pytest.mark.parametrize("attributes, field", [
+    ('lower="-1e308" upper="1"', "lower -1e+308 is outside"),
+    ('lower="0" upper="nan"', "upper='nan' is not a number"),
+    ('effort="-5" velocity="1"', "effort -5 is outside [0, 1e+06]"),
+    ('effort="1" velocity="1e200"', "velocity 1e+200 is outside [0, 1000]"),
+])
+def test_urdf_joint_limits_are_checked(attributes, field):
+    text = ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+            '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/><limit %s/></joint></robot>'
+            % attributes)
+    with pytest.raises(UserError) as err:
+        read_urdf_text(text, "model_xml")
+    assert field in str(err.value) and "joint 'j'" in str(err.value)
+    assert "\n" not in str(err.value)
+    fine = text.replace("<limit %s/>" % attributes,
+                        '<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>')
+    assert read_urdf_text(fine, "model_xml").joints["j"].type == "revolute"

@@ -402,6 +402,16 @@ class _Reader:
             self._fail(elem, "parent and child are the same link %r" % ends[0], owner)
         if kind in ("revolute", "prismatic"):
             self._child(elem, "limit", owner)
+        limit = elem.find("limit")
+        for key, low, high, unit in (
+                ("lower", -limits.MAX_JOINT_POSITION, limits.MAX_JOINT_POSITION, "rad or m"),
+                ("upper", -limits.MAX_JOINT_POSITION, limits.MAX_JOINT_POSITION, "rad or m"),
+                ("effort", 0.0, limits.MAX_FORCE, "N m or N"),
+                ("velocity", 0.0, limits.MAX_ANGULAR_SPEED, "rad/s or m/s")):
+            if limit is not None and key in limit.attrib:
+                problem = limits.outside(key, self._number(limit, key, owner), low, high, unit)
+                if problem:
+                    self._fail(limit, problem, owner)
         axis = (1.0, 0.0, 0.0)
         axis_elem = elem.find("axis")
         if axis_elem is not None:
