@@ -613,7 +613,7 @@ def mesh_rows(runs, row):
 
 
 def multi_rows(runs, row):
-    """Issue 11's rows: three robots in the house; how the cost grows with 1, 2, 4, 8."""
+    """The several-robot rows: three robots in the house; how the cost grows with 1, 2, 4, 8."""
     def bound_rows(label, bounds, fast_factor):
         bare, with_sensors = (median([b[k] for b in bounds]) for k in (0, 1))
         row("  %s without ROS: physics alone / physics and sensors" % label,

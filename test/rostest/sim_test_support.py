@@ -1,18 +1,26 @@
 """Helpers for the rostest nodes: wait on wall time (a stalled /clock must fail a test, never
-hang it), collect messages, read poses, run the package's nodes as a user does (on a pipe or on
-a pseudo-terminal). Imported by the test_*.py nodes beside it."""
+hang it), collect messages, read and make poses, call /gazebo's services, run the package's
+nodes as a user does (on a pipe or on a pseudo-terminal). Imported by the test_*.py nodes
+beside it (rostest runs them from this folder, so it is first on their sys.path)."""
 import math
 import os
 import signal
+import socket
 import subprocess
 import termios
 import threading
 import time
 
+import rosgraph
 import roslib.packages
 import rospy
-from geometry_msgs.msg import Twist, Vector3
+from gazebo_msgs.msg import ModelStates
+from gazebo_msgs.srv import (DeleteModel, GetLinkState, GetModelProperties, GetModelState,
+                             GetPhysicsProperties, GetWorldProperties, SetLinkState,
+                             SetModelState, SetPhysicsProperties, SpawnModel)
+from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
 
@@ -21,8 +29,16 @@ def yaw_of(q) -> float:
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
+def pose(x: float, y: float, z: float = 0.0, yaw: float = 0.0) -> Pose:
+    """A geometry_msgs/Pose at (x, y, z), turned ``yaw`` rad about z."""
+    return Pose(position=Point(x, y, z),
+                orientation=Quaternion(0, 0, math.sin(yaw / 2), math.cos(yaw / 2)))
+
+
 WAIT = 60.0            # s: how long a test waits for the sim to answer or publish
-ARENA_APOTHEM = 2.540  # m: turtlebot3_world's inner wall flats from the centre (tb3_facts 4.2)
+SHORT_WAIT = 30.0      # s: the same, for the tests that give up sooner
+ROBOT = "turtlebot3_burger"  # the model name of the robot sim.launch spawns (model burger)
+ARENA_APOTHEM = 2.540  # m: turtlebot3_world's inner walls from the centre (doc/turtlebot3.md 4.2)
 
 
 def arena_wall_distance(origin, bearing_deg: float) -> float:
@@ -63,6 +79,19 @@ def wait_for(predicate, timeout: float, step: float = 0.02) -> bool:
             return True
         time.sleep(step)
     return predicate()
+
+
+def publishers(topic: str):
+    """The nodes publishing ``topic``, as the master lists them."""
+    state = rosgraph.Master("/test").getSystemState()
+    return next((nodes for name, nodes in state[0] if name == topic), [])
+
+
+def free_port() -> int:
+    """A local port where nothing listens (bound, then closed)."""
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
 
 
 class Recorder:
@@ -114,6 +143,25 @@ class Recorder:
         return find()
 
 
+def one_message(topic, msg_type, timeout: float = WAIT):
+    """The first message on ``topic`` (None if none within ``timeout`` wall s); unsubscribes,
+    so that the sim stops making it (cameras and the IMU work only while subscribed)."""
+    recorder = Recorder(topic, msg_type)
+    try:
+        return recorder.latest(timeout)
+    finally:
+        recorder.sub.unregister()
+
+
+def later(recorder: Recorder, msg, seconds: float, timeout: float = WAIT):
+    """The odometry message of ``recorder`` ``seconds`` of sim time after ``msg``; fails the
+    test if none comes within ``timeout`` wall s."""
+    result = recorder.after(msg.header.stamp + rospy.Duration(seconds), timeout)
+    if result is None:
+        raise AssertionError("no odometry %g s of sim time later" % seconds)
+    return result
+
+
 class Driver:
     """Publishes cmd_vel and calls the /gazebo services."""
 
@@ -131,6 +179,52 @@ class Driver:
         """Call a std_srvs/Empty service such as /gazebo/reset_world."""
         rospy.wait_for_service(service, timeout=20.0)
         rospy.ServiceProxy(service, Empty)()
+
+
+SERVICES = {"get_model_state": GetModelState, "set_model_state": SetModelState,
+            "get_link_state": GetLinkState, "set_link_state": SetLinkState,
+            "get_world_properties": GetWorldProperties,
+            "get_model_properties": GetModelProperties, "spawn_sdf_model": SpawnModel,
+            "spawn_urdf_model": SpawnModel, "delete_model": DeleteModel,
+            "get_physics_properties": GetPhysicsProperties,
+            "set_physics_properties": SetPhysicsProperties, "reset_world": Empty,
+            "reset_simulation": Empty, "pause_physics": Empty, "unpause_physics": Empty}
+
+
+class Gazebo:
+    """Proxies of /gazebo's services (``gz.get_model_state(...)``) and a model_states recorder."""
+
+    def __init__(self):
+        for name, srv in SERVICES.items():
+            rospy.wait_for_service("/gazebo/" + name, timeout=30.0)
+            setattr(self, name, rospy.ServiceProxy("/gazebo/" + name, srv))
+        self.states = Recorder("/gazebo/model_states", ModelStates)
+        self.clock = Recorder("/clock", Clock)
+
+    def latest_states(self, timeout=10.0):
+        return self.states.latest(timeout)
+
+    def names(self, timeout=10.0):
+        msg = self.latest_states(timeout)
+        return list(msg.name) if msg else None
+
+    def wait_names(self, predicate, timeout=20.0):
+        """Wait (wall s) until the latest model_states names satisfy ``predicate``."""
+        return wait_for(lambda: self.names() is not None and predicate(self.names()), timeout)
+
+    def position(self, name):
+        resp = self.get_model_state(model_name=name)
+        assert resp.success, resp.status_message
+        p = resp.pose.position
+        return p.x, p.y, p.z
+
+    def factor(self, wall_seconds=3.0):
+        """Sim seconds per wall second over ``wall_seconds`` of /clock."""
+        start = self.clock.latest(10.0).clock.to_sec()
+        t0 = time.monotonic()
+        time.sleep(wall_seconds)
+        end = self.clock.latest(10.0).clock.to_sec()
+        return (end - start) / (time.monotonic() - t0)
 
 
 def executable(name: str, package: str = "tutorial_turtlebot") -> str:

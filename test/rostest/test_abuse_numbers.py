@@ -13,11 +13,9 @@ from gazebo_msgs.msg import ModelState, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from sensor_msgs.msg import LaserScan
 
-from sim_test_support import Driver, Recorder, wait_for
-from world_api_support import Gazebo
+from sim_test_support import ROBOT, Driver, Gazebo, Recorder, wait_for
+from sim_test_support import SHORT_WAIT as WAIT
 
-WAIT = 30.0
-ROBOT = "turtlebot3_burger"
 SPAWN = (-2.0, -0.5)
 NAN = float("nan")
 

@@ -12,16 +12,12 @@ import rospy
 import rostest
 from sensor_msgs.msg import CameraInfo, CompressedImage, Image, PointCloud2
 
-from sim_test_support import wait_for
+from sim_test_support import WAIT, wait_for
+from sim_test_support import one_message as wait_message
 
-# (width, height, hfov) per model, tb3_facts 2.4 and 4.5.
+# (width, height, hfov) per model, doc/turtlebot3.md 2.4 and 4.5.
 CAMERAS = {"waffle_pi": (640, 480, 1.085595), "waffle": (1920, 1080, 1.3439),
            "burger": (320, 240, 1.085595)}
-WAIT = 60.0
-
-
-def wait_message(topic, msg_type):
-    return rospy.wait_for_message(topic, msg_type, timeout=WAIT)
 
 
 def as_rgb(msg):
@@ -97,7 +93,7 @@ class CameraTest(unittest.TestCase):
         depth = wait_message("/camera/depth/image_raw", Image)
         self.assertEqual((depth.encoding, depth.step), ("32FC1", 4 * depth.width))
         d = np.frombuffer(depth.data, dtype=np.float32).reshape(depth.height, depth.width)
-        # The waffle's optical frame is 0.117 m above the floor (tb3_facts 1.3): the pixel
+        # The waffle's optical frame is 0.117 m above the floor (doc/turtlebot3.md 1.3): the pixel
         # row that looks down at atan(0.117 / 1.2) sees the floor 1.2 m ahead (within the
         # R200's 0.4..5 m; nearer than the first obstacle along that line of sight).
         f = depth.width / (2.0 * math.tan(1.3439 / 2.0))

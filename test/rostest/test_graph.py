@@ -11,7 +11,6 @@ line and exits non-zero.
 import os
 import shutil
 import signal
-import socket
 import subprocess
 import tempfile
 import time
@@ -21,20 +20,13 @@ import rosgraph
 import rospy
 import rostest
 
-from sim_test_support import NodeProcess, PtyProcess, stop_process, wait_for
+from sim_test_support import WAIT, NodeProcess, PtyProcess, free_port, stop_process, wait_for
 
 TELEOP = "/turtlebot3_teleop_keyboard"
 STUCK = "/graph_test_stuck"
-WAIT = 60.0   # wall s for the graph to show a connection
 RUN = 30.0    # wall s a single run of graph may take (each node gets 1 s to answer)
 DOT_EDGE = ('n___turtlebot3_teleop_keyboard -> n___gazebo [label="/cmd_vel", '
             'URL="topic:/cmd_vel", penwidth=1];')
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("localhost", 0))
-        return sock.getsockname()[1]
 
 
 class GraphTest(unittest.TestCase):

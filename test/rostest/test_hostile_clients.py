@@ -30,9 +30,8 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
-from sim_test_support import NodeProcess, Recorder, executable, wait_for
+from sim_test_support import WAIT, NodeProcess, Recorder, executable, wait_for
 
-WAIT = 60.0
 ANSWER = 1.0          # s: the longest a service may take while the sim is under attack
 STOP = 2.0            # s: the longest from SIGINT to the sim's exit
 RSS_GROWTH = 8 << 20  # bytes the sim may grow by under attack

@@ -25,14 +25,13 @@ import rospy
 import rostest
 from sensor_msgs.msg import Image
 
-from sim_test_support import NodeProcess, wait_for
+from sim_test_support import WAIT, NodeProcess, wait_for
 
 SCREEN = (1280, 1024)
 CAMERAS = {"waffle_pi": (640, 480), "waffle": (1920, 1080)}
 # Least received frames per wall second to accept: 30 per sim second, but the Waffle's big
-# renders slow the sim to about 0.3 of real time (README, Benchmark), and the machine is shared.
+# renders slow the sim to about 0.3 of real time (doc/benchmark.md), and the machine is shared.
 MIN_RATE = {"waffle_pi": 3.0, "waffle": 1.0}
-WAIT = 60.0
 SCREENSHOT = "/tmp/tutorial_turtlebot_image_view_%s_%d.png"
 # xwininfo -root -children: 0x20000b "TITLE": ("image_view" "Image_view")  640x480+0+0  +0+0
 WINDOW_LINE = re.compile(r'^\s*0x[0-9a-f]+ "(.*)": \("image_view[^"]*" "Image_view"\)\s+'

@@ -22,8 +22,8 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
 from sim_test_support import PtyProcess, Recorder, wait_for
+from sim_test_support import SHORT_WAIT as WAIT
 
-WAIT = 30.0     # wall seconds any single wait may take
 KEY_GAP = 0.05  # wall s between typed keys
 
 

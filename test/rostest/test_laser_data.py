@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """rostest node: what ``laser_data`` logs with a Burger at the turtlebot3_world spawn (-2.0, -0.5),
-facing +x, checked against the arena (tb3_facts 4.2): nothing within 3.5 m ahead along
+facing +x, checked against the arena (doc/turtlebot3.md 4.2): nothing within 3.5 m ahead along
 y = -0.5; the hexagon's inner walls (flats 2.540 m from the centre, corners on +-x) behind, left
 and right; the closest reading on the south-west wall's flat, 0.53 m away at 210 degrees.
 

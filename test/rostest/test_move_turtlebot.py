@@ -16,9 +16,8 @@ import rostest
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
-from sim_test_support import NodeProcess, Recorder, wait_for, yaw_of
+from sim_test_support import WAIT, NodeProcess, Recorder, later, wait_for, yaw_of
 
-WAIT = 60.0     # wall seconds any single wait may take
 LINEAR, ANGULAR = 0.2, 0.5
 RADIUS = LINEAR / ANGULAR  # 0.4 m
 
@@ -48,10 +47,7 @@ class MoveTurtlebotTest(unittest.TestCase):
             cls.node.kill()
 
     def later(self, msg, seconds):
-        """The odometry message ``seconds`` of sim time after ``msg``."""
-        result = self.odom.after(msg.header.stamp + rospy.Duration(seconds), WAIT)
-        self.assertIsNotNone(result, "no odometry %g s of sim time later" % seconds)
-        return result
+        return later(self.odom, msg, seconds)
 
     def test_1_circle_then_stop_on_sigint(self):
         start_pose = self.odom.latest()

@@ -7,19 +7,17 @@ import os
 import time
 import unittest
 
-import rosgraph
 import rospy
 import rostest
 import tf2_ros
-from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
+from geometry_msgs.msg import Twist, Vector3
 from gazebo_msgs.msg import ModelState
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 
-from sim_test_support import NodeProcess, Recorder, wait_for
-from world_api_support import Gazebo
+from sim_test_support import Gazebo, NodeProcess, Recorder, pose, publishers, wait_for, yaw_of
+from sim_test_support import SHORT_WAIT as WAIT
 
-WAIT = 30.0
 ROBOTS = ("tb3_0", "tb3_1", "tb3_2")
 SPAWN = {"tb3_0": (-7.0, -1.0, 1.57), "tb3_1": (7.0, -1.0, 1.57), "tb3_2": (0.5, 3.0, 0.0)}
 # Three places within 0.9 m of (-3.5, -3.0), where the house is clear for 1.3 m around.
@@ -27,21 +25,6 @@ TRIANGLE = {"tb3_0": (-3.5, -3.6), "tb3_1": (-3.5, -2.4), "tb3_2": (-2.9, -3.0)}
 BURGER_RADIUS = 0.04   # m: the LDS housing, what a Burger's laser meets of another Burger
 URDF_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "urdf")
 BURGER = os.path.join(URDF_DIR, "turtlebot3_burger.urdf")
-
-
-def pose(x, y, yaw=0.0):
-    return Pose(position=Point(x, y, 0.0),
-                orientation=Quaternion(0, 0, math.sin(yaw / 2), math.cos(yaw / 2)))
-
-
-def yaw_of(q):
-    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
-
-
-def publishers(topic):
-    """The nodes publishing ``topic``, as the master lists them."""
-    state = rosgraph.Master("/test").getSystemState()
-    return next((nodes for name, nodes in state[0] if name == topic), [])
 
 
 class MultiTurtleBot3(unittest.TestCase):
@@ -72,7 +55,7 @@ class MultiTurtleBot3(unittest.TestCase):
             (odom.pose.pose.position.x, odom.pose.pose.position.y), (x, y)) < 0.02
 
     def place(self, robot, x, y, yaw=0.0):
-        resp = self.gz.set_model_state(ModelState(model_name=robot, pose=pose(x, y, yaw)))
+        resp = self.gz.set_model_state(ModelState(model_name=robot, pose=pose(x, y, yaw=yaw)))
         self.assertTrue(resp.success, resp.status_message)
 
     def position(self, robot):

@@ -6,7 +6,7 @@ import unittest
 import rospy
 import rostest
 
-WAIT = 60.0
+from sim_test_support import WAIT
 
 
 def run(*command):

@@ -12,9 +12,8 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from sim_test_support import Driver, Recorder, wait_for, yaw_of
+from sim_test_support import WAIT, Driver, Recorder, later, wait_for, yaw_of
 
-WAIT = 60.0  # wall seconds any single wait may take before the test fails
 
 
 class SimDriveTest(unittest.TestCase):
@@ -50,10 +49,7 @@ class SimDriveTest(unittest.TestCase):
         return self.drive.odom.latest()
 
     def later(self, msg, seconds):
-        """The odometry message ``seconds`` of sim time after ``msg``."""
-        result = self.drive.odom.after(msg.header.stamp + rospy.Duration(seconds), WAIT)
-        self.assertIsNotNone(result, "no odometry %g s of sim time later" % seconds)
-        return result
+        return later(self.drive.odom, msg, seconds)
 
     def test_straight_0_2_for_5_s_moves_1_m(self):
         start = self.steady(0.2, 0.0)

@@ -2,7 +2,7 @@
 """rostest node: the sim's ROS graph in turtlebot3_world with a Burger at the spawn pose.
 
 Topics, types and publisher, message fields and frames, /clock, the spawn pose in /odom, the
-scan against the arena's geometry (tb3_facts 4.2), the IMU at rest and the whole TF tree.
+scan against the arena's geometry (doc/turtlebot3.md 4.2), the IMU at rest and the whole TF tree.
 """
 import math
 import time

@@ -11,9 +11,8 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from sim_test_support import NodeProcess, wait_for
+from sim_test_support import WAIT, NodeProcess, wait_for
 
-WAIT = 60.0  # wall seconds any single wait may take
 
 
 class SingleSimTest(unittest.TestCase):

@@ -13,11 +13,8 @@ import unittest
 import rospy
 import rostest
 
-from sim_test_support import NodeProcess, executable, wait_for
-from world_api_support import Gazebo
+from sim_test_support import ROBOT, WAIT, Gazebo, NodeProcess, executable, wait_for, yaw_of
 
-WAIT = 60.0  # wall s for one spawn_model run (a Python start-up plus a service call)
-ROBOT = "turtlebot3_burger"
 BOX = """<sdf version="1.6"><model name="box"><link name="link">
   <inertial><mass>0.1</mass><inertia><ixx>0.0004</ixx><iyy>0.0004</iyy><izz>0.0004</izz></inertia></inertial>
   <collision name="collision"><geometry><box><size>0.15 0.15 0.15</size></box></geometry></collision>
@@ -73,8 +70,7 @@ class SpawnModelTest(unittest.TestCase):
         self.assertAlmostEqual(state.pose.position.x, 1.0, delta=0.02)
         self.assertAlmostEqual(state.pose.position.y, -0.5, delta=0.02)
         q = state.pose.orientation
-        self.assertAlmostEqual(math.atan2(2 * (q.w * q.z + q.x * q.y),
-                                          1 - 2 * (q.y * q.y + q.z * q.z)), 0.5, delta=0.02)
+        self.assertAlmostEqual(yaw_of(q), 0.5, delta=0.02)
 
     def test_urdf_from_a_relative_param_in_the_node_namespace(self):
         rospy.set_param("/lab/crate_description", CRATE)

@@ -13,9 +13,8 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 
-from sim_test_support import Driver, Recorder, wait_for
+from sim_test_support import WAIT, Driver, Recorder, later, wait_for, yaw_of
 
-WAIT = 60.0           # wall seconds any single wait may take
 PILLAR = (-1.1, 0.0)  # centre, m
 PILLAR_RADIUS = 0.15
 SCAN_BEHIND = 0.032   # m, base_scan behind base_footprint (burger)
@@ -25,7 +24,7 @@ SPEED = 0.15          # stop_at_obstacle.launch's default ~speed
 def pillar_distance(odom) -> float:
     """Distance (m) from the laser to the pillar's surface, from a ground-truth odometry pose."""
     p, q = odom.pose.pose.position, odom.pose.pose.orientation
-    yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+    yaw = yaw_of(q)
     sx, sy = p.x - SCAN_BEHIND * math.cos(yaw), p.y - SCAN_BEHIND * math.sin(yaw)
     return math.hypot(PILLAR[0] - sx, PILLAR[1] - sy) - PILLAR_RADIUS
 
@@ -40,10 +39,7 @@ class StopAtObstacleTest(unittest.TestCase):
         assert cls.odom.latest(30.0) is not None, "no odom"
 
     def later(self, msg, seconds):
-        """The odometry message ``seconds`` of sim time after ``msg``."""
-        result = self.odom.after(msg.header.stamp + rospy.Duration(seconds), WAIT)
-        self.assertIsNotNone(result, "no odometry %g s of sim time later" % seconds)
-        return result
+        return later(self.odom, msg, seconds)
 
     def drives_then_rests(self):
         """Wait until the robot drives at ~speed, then until it is at rest; check where it rests

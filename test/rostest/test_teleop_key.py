@@ -17,8 +17,8 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
 from sim_test_support import NodeProcess, PtyProcess, Recorder, wait_for, yaw_of
+from sim_test_support import SHORT_WAIT as WAIT
 
-WAIT = 30.0        # wall seconds any single wait may take
 KEY_GAP = 0.05     # wall s between typed keys: faster than the node's 0.1 s read timeout
 STEP = 0.02 + 1e-6  # m/s, the largest change of linear.x per loop
 

@@ -5,7 +5,6 @@ a topic it subscribes to, and which address it tried (unreachable_publisher.test
 Fake publishers of /cmd_vel are registered with the master under fake node names: one at an
 XML-RPC URI where nothing listens, one whose XML-RPC server (here, in the test) answers
 requestTopic with a TCPROS address where nothing listens."""
-import socket
 import threading
 import time
 import unittest
@@ -16,18 +15,11 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 
-from sim_test_support import wait_for
+from sim_test_support import WAIT, wait_for
+from sim_test_support import free_port as closed_port
 
-WAIT = 60.0
 TOPIC = "/cmd_vel"
 TYPE = "geometry_msgs/Twist"
-
-
-def closed_port() -> int:
-    """A local port where nothing listens (bound, then closed)."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 class FakePublisher:

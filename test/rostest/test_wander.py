@@ -4,7 +4,7 @@ turtlebot3_world for ~duration (90 s) of sim time without touching anything and 
 
 Every ground-truth /odom pose is checked against the world's collision shapes, read from the
 same SDF file the sim loads (the nine pillars, the wall ring, the five green hexagons): the
-robot's outline (the chassis box and the two wheels, tb3_facts 1.1) must stay at least
+robot's outline (the chassis box and the two wheels, doc/turtlebot3.md 1.1) must stay at least
 CLEARANCE from each of them. All obstacles stand taller than the robot, so the check is 2D.
 """
 import math
@@ -30,7 +30,7 @@ def rectangle(x0, x1, y0, y1):
 
 
 # Each model's outline in base_footprint (x forward, y left), m: the chassis collision box and
-# the two wheels (radius 0.033, width 0.018), tb3_facts 1.1. The lidar and casters lie within.
+# the two wheels (radius 0.033, width 0.018), doc/turtlebot3.md 1.1. Lidar and casters lie within.
 ROBOT_PARTS = {
     "burger": (rectangle(-0.102, 0.038, -0.070, 0.070),
                rectangle(-0.033, 0.033, 0.071, 0.089), rectangle(-0.033, 0.033, -0.089, -0.071)),

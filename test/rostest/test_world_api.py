@@ -14,11 +14,9 @@ from gazebo_msgs.msg import LinkStates, ModelState, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from nav_msgs.msg import Odometry
 
-from sim_test_support import Driver, Recorder, wait_for
-from world_api_support import Gazebo, quat_yaw
+from sim_test_support import ROBOT, Driver, Gazebo, wait_for, yaw_of
+from sim_test_support import SHORT_WAIT as WAIT
 
-WAIT = 30.0
-ROBOT = "turtlebot3_burger"
 SPAWN = (-2.0, -0.5)
 BOX = """<sdf version="1.6"><model name="box"><link name="link">
   <inertial><mass>0.1</mass><inertia><ixx>0.0004</ixx><iyy>0.0004</iyy><izz>0.0004</izz></inertia></inertial>
@@ -92,8 +90,8 @@ class WorldApiTest(unittest.TestCase):
         self.assertAlmostEqual(resp.pose.position.x, odom.pose.pose.position.x, delta=2e-3)
         self.assertAlmostEqual(resp.pose.position.y, odom.pose.pose.position.y, delta=2e-3)
         self.assertAlmostEqual(resp.pose.position.x, SPAWN[0], delta=0.01)
-        self.assertAlmostEqual(quat_yaw(resp.pose.orientation),
-                               quat_yaw(odom.pose.pose.orientation), delta=2e-3)
+        self.assertAlmostEqual(yaw_of(resp.pose.orientation),
+                               yaw_of(odom.pose.pose.orientation), delta=2e-3)
         props = self.gz.get_model_properties(model_name=ROBOT)
         self.assertTrue(props.success)
         self.assertEqual(props.body_names[0], "base_footprint")
@@ -123,7 +121,7 @@ class WorldApiTest(unittest.TestCase):
         self.assertTrue(resp.success)
         state = self.gz.get_model_state(model_name=ROBOT)
         self.assertAlmostEqual(state.pose.position.x, -0.55, delta=1e-3)
-        self.assertAlmostEqual(quat_yaw(state.pose.orientation), math.pi / 2, delta=1e-3)
+        self.assertAlmostEqual(yaw_of(state.pose.orientation), math.pi / 2, delta=1e-3)
         time.sleep(0.3)
         self.assertEqual(self.gz.clock.latest().clock, stamp)
         self.gz.unpause_physics()
@@ -186,7 +184,7 @@ class WorldApiTest(unittest.TestCase):
             self.assertAlmostEqual(self.gz.position("goal")[0], 0.6, delta=1e-3)
             self.assertAlmostEqual(self.gz.position("crate")[0], -1.6, delta=1e-3)
             goal = self.gz.get_model_state(model_name="goal")
-            self.assertAlmostEqual(quat_yaw(goal.pose.orientation), -1.5708, delta=1e-3)
+            self.assertAlmostEqual(yaw_of(goal.pose.orientation), -1.5708, delta=1e-3)
 
     # --- failures ------------------------------------------------------------------------------
 

@@ -18,28 +18,20 @@ from gazebo_msgs.srv import (ApplyBodyWrench, ApplyJointEffort, BodyRequest, Get
                              GetJointPropertiesResponse, GetLightProperties, GetLinkProperties,
                              JointRequest, SetLightProperties, SetLinkProperties,
                              SetModelConfiguration)
-from geometry_msgs.msg import Point, Pose, Quaternion, Vector3, Wrench
+from geometry_msgs.msg import Point, Vector3, Wrench
 from sensor_msgs.msg import Imu, LaserScan
 from std_msgs.msg import ColorRGBA
 
-from sim_test_support import Recorder, executable, wait_for
-from world_api_support import Gazebo
+from sim_test_support import ROBOT, Gazebo, Recorder, executable, pose, wait_for
+from sim_test_support import SHORT_WAIT as WAIT
 
-WAIT = 30.0
-ROBOT = "turtlebot3_burger"
 BOX = """<sdf version="1.6"><model name="box"><link name="link">
   <inertial><mass>2</mass><inertia><ixx>0.0075</ixx><iyy>0.0075</iyy><izz>0.0075</izz></inertia></inertial>
   <collision name="collision"><geometry><box><size>0.15 0.15 0.15</size></box></geometry></collision>
 </link></model></sdf>"""
-WHEEL = """<robot name="w"><link name="base"><inertial><mass value="5"/>
-<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
-<collision><geometry><box size="0.3 0.3 0.1"/></geometry></collision></link>
-<joint name="spin" type="continuous"><parent link="base"/><child link="disc"/>
-<origin xyz="0 0 0.2"/><axis xyz="0 0 1"/></joint>
-<link name="disc"><inertial><mass value="1"/>
-<inertia ixx="0.01" iyy="0.01" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial>
-<collision><geometry><cylinder radius="0.2" length="0.05"/></geometry></collision></link>
-</robot>"""
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "fixtures",
+                       "wheel.urdf")) as _f:
+    WHEEL = _f.read().rstrip("\n")   # a disc on a vertical joint over a heavy base
 SERVICES = {"apply_body_wrench": ApplyBodyWrench, "clear_body_wrenches": BodyRequest,
             "apply_joint_effort": ApplyJointEffort, "clear_joint_forces": JointRequest,
             "get_link_properties": GetLinkProperties, "set_link_properties": SetLinkProperties,
@@ -47,10 +39,6 @@ SERVICES = {"apply_body_wrench": ApplyBodyWrench, "clear_body_wrenches": BodyReq
             "set_model_configuration": SetModelConfiguration,
             "get_light_properties": GetLightProperties, "set_light_properties": SetLightProperties}
 MODELS = ("box", "wheel", "wheel2")
-
-
-def pose(x, y, z=0.0):
-    return Pose(position=Point(x, y, z), orientation=Quaternion(0, 0, 0, 1))
 
 
 class WorldApiMoreTest(unittest.TestCase):

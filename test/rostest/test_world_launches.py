@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """rostest node: turtlebot3_house.launch with a Burger: /odom starts at the spawn (-3, 1) facing
-+x, and the scan there meets the house's walls where tb3_facts 4.3 puts them.
++x, and the scan there meets the house's walls where doc/turtlebot3.md 4.3 puts them.
 
 From the Burger's scan origin (0.032 m behind base_footprint, 0.182 m up) at (-3.032, 1.0):
 ahead (+x) Wall_101's west face at x -0.125; behind (-x) Wall_99 / Wall_88's east face at

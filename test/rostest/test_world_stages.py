@@ -13,10 +13,8 @@ from gazebo_msgs.msg import ModelState
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from sensor_msgs.msg import LaserScan
 
-from sim_test_support import wait_for
-from world_api_support import Gazebo, quat_yaw
-
-WAIT = 30.0
+from sim_test_support import Gazebo, wait_for, yaw_of
+from sim_test_support import SHORT_WAIT as WAIT
 
 
 class StageTest(unittest.TestCase):
@@ -47,7 +45,7 @@ class StageTest(unittest.TestCase):
                                    Twist(angular=Vector3(0, 0, 0.5)), "world"))
             time.sleep(0.1)
         last = self.gz.get_model_state(model_name="obstacle").pose
-        turned = quat_yaw(last.orientation) - quat_yaw(first.orientation)
+        turned = yaw_of(last.orientation) - yaw_of(first.orientation)
         rospy.loginfo("obstacle turned %.3f rad in 3 s", turned)
         self.assertGreater(turned, 0.2)
         self.assertLess(math.hypot(last.position.x, last.position.y), 0.02)  # about its centre

@@ -13,7 +13,6 @@ import tempfile
 import time
 import unittest
 
-import rosgraph
 import rospy
 import rostest
 from gazebo_msgs.srv import SpawnModelRequest
@@ -21,10 +20,8 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
 
-from sim_test_support import NodeProcess, Recorder, wait_for
-from world_api_support import Gazebo
+from sim_test_support import WAIT, Gazebo, NodeProcess, Recorder, one_message, publishers, wait_for
 
-WAIT = 60.0
 FIXTURES = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                          os.pardir, "fixtures"))
 sys.path.insert(0, os.path.join(FIXTURES, "turtlebot3_description", "meshes"))
@@ -50,21 +47,6 @@ CRATE = """<?xml version="1.0"?>
     </collision>
   </link>
 </robot>"""
-
-
-def publishers(topic):
-    state = rosgraph.Master("/test").getSystemState()
-    return next((nodes for name, nodes in state[0] if name == topic), [])
-
-
-def one_message(topic, msg_type, timeout=WAIT):
-    """The first message on ``topic`` (None if none within ``timeout`` wall s); unsubscribes,
-    so that the sim stops making it (cameras and the IMU work only while subscribed)."""
-    recorder = Recorder(topic, msg_type)
-    try:
-        return recorder.latest(timeout)
-    finally:
-        recorder.sub.unregister()
 
 
 def xacro(command, model):

@@ -6,50 +6,15 @@ import math
 import pytest
 
 from tutorial_turtlebot.sim import reference_frames as rf
-from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.world_control import RequestError, WorldControl
+from tutorial_turtlebot.sim.world_control import RequestError
 
-STEPS_PER_S = 400   # at the default 2.5 ms step
+from unit_helpers import ROBOT, WHEEL, at, box_sdf, run
+
 NS = 1_000_000_000
 MASS = 2.0
 SIZE = 0.15
 IZZ = MASS * SIZE * SIZE / 6       # a solid cube: 0.0075 kg m^2
-ROBOT = "turtlebot3_burger"
-# a heavy base on the floor with a disc on a vertical continuous joint: the disc's inertia about
-# its axis is 0.02 kg m^2, so an effort of 0.02 N m turns it up at 1 rad/s^2
-WHEEL = """<robot name="w"><link name="base"><inertial><mass value="5"/>
-<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
-<collision><geometry><box size="0.3 0.3 0.1"/></geometry></collision></link>
-<joint name="spin" type="continuous"><parent link="base"/><child link="disc"/>
-<origin xyz="0 0 0.2"/><axis xyz="0 0 1"/></joint>
-<link name="disc"><inertial><mass value="1"/>
-<inertia ixx="0.01" iyy="0.01" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial>
-<collision><geometry><cylinder radius="0.2" length="0.05"/></geometry></collision></link>
-</robot>"""
-
-
-def box_xml(size=SIZE, mass=MASS):
-    inertia = mass * size * size / 6
-    return ("<sdf version='1.6'><model name='x'><link name='link'><inertial><mass>%g</mass>"
-            "<inertia><ixx>%g</ixx><iyy>%g</iyy><izz>%g</izz></inertia></inertial>"
-            "<collision name='c'><geometry><box><size>%g %g %g</size></box></geometry>"
-            "</collision></link></model></sdf>" % (mass, inertia, inertia, inertia, *(size,) * 3))
-
-
-def at(x, y, z=0.0, yaw=0.0):
-    return (x, y, z), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
-
-
-@pytest.fixture
-def world():
-    sim = Simulation(SimConfig(model="burger", world="empty"))
-    yield sim, WorldControl(sim)
-    sim.close()
-
-
-def run(sim, seconds):
-    for _ in range(round(seconds * STEPS_PER_S)):
-        sim.step()
+BOX = box_sdf(SIZE, MASS, visual=False)
 
 
 def weightless(wc, link, on=False):
@@ -59,10 +24,10 @@ def weightless(wc, link, on=False):
 
 
 @pytest.fixture
-def floating_box(world):
+def floating_box(empty):
     """A 2 kg box 1 m above the floor, gravity off: nothing touches it."""
-    sim, wc = world
-    wc.spawn("box", box_xml(), at(2, 2, 1.0))
+    sim, wc = empty
+    wc.spawn("box", BOX, at(2, 2, 1.0))
     weightless(wc, "box::link")
     return sim, wc
 
@@ -72,8 +37,8 @@ def state(wc, name="box"):
     return pose, twist
 
 
-def test_nothing_to_apply_costs_one_check(world):
-    sim, _ = world
+def test_nothing_to_apply_costs_one_check(empty):
+    sim, _ = empty
     assert sim.forces.active is False
     run(sim, 0.1)
     assert sim.forces.active is False
@@ -129,7 +94,7 @@ def test_the_reference_point_is_where_the_force_acts(floating_box):
 
 def test_another_bodys_frame_gives_the_axes_and_the_point(floating_box):
     sim, wc = floating_box
-    wc.spawn("marker", box_xml(), at(-2, 2, 1.0, yaw=math.pi / 2))
+    wc.spawn("marker", BOX, at(-2, 2, 1.0, yaw=math.pi / 2))
     weightless(wc, "marker::link")
     # marker's x is the world's +y, its y the world's -x: the box centre (2, 2, 1) is at
     # (0, -4, 0) in marker's frame, and (0.1, -4, 0) is 0.1 m along world +y from it
@@ -174,9 +139,9 @@ def test_a_heavier_link_answers_less(floating_box):
     assert ang[2] == pytest.approx(0.5, rel=0.02)
 
 
-def test_gravity_off_and_on_again(world):
-    sim, wc = world
-    wc.spawn("box", box_xml(), at(2, 2, 1.0))
+def test_gravity_off_and_on_again(empty):
+    sim, wc = empty
+    wc.spawn("box", BOX, at(2, 2, 1.0))
     weightless(wc, "box::link")
     assert wc.get_link_properties("box::link").gravity_mode is False
     run(sim, 0.5)
@@ -196,8 +161,8 @@ def test_delete_drops_what_acted_on_the_model(floating_box):
     run(sim, 0.05)
 
 
-def test_joint_effort_spins_a_free_wheel(world):
-    sim, wc = world
+def test_joint_effort_spins_a_free_wheel(empty):
+    sim, wc = empty
     wc.spawn("w", WHEEL, at(1.5, 0, 0.06), kind="urdf")
     run(sim, 0.2)
     assert abs(wc.get_joint_properties("spin").rate[0]) < 1e-3   # no brake, no push
@@ -217,10 +182,10 @@ def test_joint_effort_spins_a_free_wheel(world):
     assert wc.get_joint_properties("spin").rate[0] == pytest.approx(rate, rel=0.02)
 
 
-def test_a_robot_wheel_effort_is_held_by_its_diff_drive(world):
+def test_a_robot_wheel_effort_is_held_by_its_diff_drive(empty):
     """gazebo_ros_diff_drive's joint motor holds the commanded wheel speed with up to the
     plugin's wheelTorque (10 N m on a TurtleBot3): a smaller effort does not turn the wheel."""
-    sim, wc = world
+    sim, wc = empty
     run(sim, 0.5)
     before = wc.get_joint_properties("wheel_left_joint").position[0]
     (x0, y0, _), _ = sim.robot.ground_truth()
@@ -247,9 +212,9 @@ def test_timing_in_steps(floating_box):
                                                rel=1e-3)
 
 
-def test_refusals_are_one_line(world):
-    sim, wc = world
-    wc.spawn("box", box_xml(), at(2, 2, 0.075))
+def test_refusals_are_one_line(empty):
+    sim, wc = empty
+    wc.spawn("box", BOX, at(2, 2, 0.075))
     nan = float("nan")
     cases = [
         (lambda: wc.apply_body_wrench("box", "", (0, 0, 0), (1, 0, 0), (0, 0, 0)),

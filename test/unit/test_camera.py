@@ -1,7 +1,7 @@
 """Cameras (camera.py): CameraInfo numbers, rendering with TinyRenderer and EGL, and the depth,
 point-cloud and JPEG payloads. No ROS master.
 
-Numbers from tb3_facts.md 2.4 (CameraInfo as gazebo_ros_camera_utils fills it) and 4.5 (the
+Numbers from doc/turtlebot3.md 2.4 (CameraInfo as gazebo_ros_camera_utils fills it) and 4.5 (the
 AutoRace camera). Scene facts are measured on the world's own geometry: a ray cast from the
 camera through a pixel must meet what the image shows there.
 """

@@ -1,4 +1,4 @@
-"""Differential drive as Gazebo's diff-drive plugin does it (tb3_facts 2.1). No ROS master."""
+"""Differential drive as Gazebo's diff-drive plugin does it (doc/turtlebot3.md 2.1); no master."""
 import math
 
 import pytest

@@ -1,7 +1,7 @@
 """The package as `catkin_make install` installs it, used with only install/setup.bash sourced.
 
 A copy of the workspace (links to this repository, its msgs/ and ros_shims/ packages) is
-configured as tools/setup.sh and the README configure one, except that the venv is a link in
+configured as tools/setup.sh and doc/development.md configure one, except that the venv is a link in
 the test's folder (<tmp>/venv -> .catkin_ws/venv), and installed into <tmp>/ws/install. Then,
 each time in a fresh `env -i bash` that sources nothing but the install space's setup.bash:
 
@@ -15,13 +15,14 @@ The real .catkin_ws/venv is never moved: only the test's links to it are. About 
 """
 import os
 import shutil
-import socket
 import subprocess
 import sys
 import tempfile
 import textwrap
 
 import pytest
+
+from unit_helpers import free_port
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 VENV = os.path.join(ROOT, ".catkin_ws", "venv")
@@ -58,12 +59,6 @@ SESSION = textwrap.dedent(r"""
     rosrun tutorial_turtlebot graph --output "$3/graph.dot" || exit 94
     grep -c n___gazebo "$3/graph.dot"
 """)
-
-
-def free_port():
-    with socket.socket() as sock:
-        sock.bind(("localhost", 0))
-        return sock.getsockname()[1]
 
 
 def clean_bash(script, *args, timeout=180):

@@ -15,7 +15,7 @@ from tutorial_turtlebot.sim.urdf_file import read_urdf_text
 from tutorial_turtlebot.sim.world_control import RequestError, WorldControl
 from tutorial_turtlebot.sim.world_sdf import load_model_xml
 
-from test_applied_forces import ROBOT, at, box_xml, run
+from unit_helpers import CUBE, ROBOT, at, run
 
 NAN = float("nan")
 REST = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
@@ -38,7 +38,7 @@ def sdf_box(size="0.2 0.2 0.2", mass="2", pose="0 0 0 0 0 0"):
 def world():
     sim = Simulation(SimConfig(model="burger", world="empty"))
     wc = WorldControl(sim)
-    wc.spawn("box", box_xml(), at(2, 2, 0.075))
+    wc.spawn("box", CUBE, at(2, 2, 0.075))
     yield sim, wc
     sim.close()
 

@@ -5,13 +5,14 @@ it) and the sim as ``rosrun tutorial_turtlebot sim``; skipped without the ROS bi
 import os
 import shutil
 import signal
-import socket
 import subprocess
 import threading
 import time
 import xmlrpc.client
 
 import pytest
+
+from unit_helpers import free_port
 
 pytestmark = pytest.mark.skipif(
     not (shutil.which("rosmaster") and shutil.which("rostopic") and shutil.which("rosservice")),
@@ -24,12 +25,6 @@ DESCRIPTION = "<robot name='kept'><link name='base'/></robot>"
 TOPICS = ("/odom", "/scan", "/clock", "/tf", "/imu", "/joint_states")
 SERVICES = ("/gazebo/get_world_properties", "/gazebo/reset_world", "/gazebo/spawn_urdf_model",
             "/gazebo/get_model_state", "/gazebo/pause_physics")
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def sim_executable() -> str:

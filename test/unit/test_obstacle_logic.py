@@ -3,34 +3,12 @@ the real LDS-01, a Hokuyo-style -pi..pi scan). No ROS master needed. Units: m, r
 import math
 import random
 
-import numpy as np
 import pytest
 
 from tutorial_turtlebot.lab.obstacle_logic import (
     FORWARD, TURN_LEFT, TURN_RIGHT, TURN_RADIUS, StopAtObstacle, Wander, turn_radius)
-from tutorial_turtlebot.lab.scan_reading import Scan
 
-INF = math.inf
-NAN = math.nan
-
-
-def f32(value):
-    return float(np.float32(value))
-
-
-CONVENTIONS = {
-    "gazebo": (0.0, f32(6.28319 / 359), 360),
-    "lds01": (0.0, f32(math.radians(1.0)), 360),
-    "hokuyo": (f32(-math.pi), f32(2 * math.pi / 720), 720),
-}
-
-
-def make_scan(convention, world):
-    """A scan whose ray at bearing b (rad, [-pi, pi)) reads ``world(b)``."""
-    angle_min, inc, count = CONVENTIONS[convention]
-    ranges = [f32(world((angle_min + i * inc + math.pi) % (2 * math.pi) - math.pi))
-              for i in range(count)]
-    return Scan(ranges, angle_min, inc, f32(0.12), f32(3.5))
+from unit_helpers import CONVENTIONS, INF, NAN, make_scan
 
 
 def points_world(points, fill=INF, radius=0.05):
@@ -156,7 +134,7 @@ def test_turn_radius():
     assert turn_radius("burger") == pytest.approx(0.15)
     assert turn_radius("waffle") == turn_radius("waffle_pi") == pytest.approx(0.26)
     assert turn_radius("hovercraft") == max(TURN_RADIUS.values())
-    # Each is at least the farthest corner of the navigation footprint (tb3_facts 1.1).
+    # Each is at least the farthest corner of the navigation footprint (doc/turtlebot3.md 1.1).
     assert turn_radius("burger") >= math.hypot(0.105, 0.105)
     assert turn_radius("waffle") >= math.hypot(0.205, 0.155)
 

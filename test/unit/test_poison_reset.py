@@ -11,7 +11,7 @@ from tutorial_turtlebot.sim.physics_properties import OdeConfig, PhysicsProperti
 from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world_control import RequestError, WorldControl
 
-from test_applied_forces import ROBOT, WHEEL, at, box_xml, run
+from unit_helpers import CUBE, ROBOT, WHEEL, at, box_sdf, run
 
 NAN = float("nan")
 REST = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
@@ -31,8 +31,8 @@ def poisons(wc):
         (lambda: wc.set_model_state(ROBOT, ((0, 0, 0), (NAN, 0, 0, 1)), REST), "NaN"),
         (lambda: wc.set_link_state("box::link", at(2, 2), ((0, 0, 0), (1e200, 0, 0))),
          "twist.angular.x"),
-        (lambda: wc.spawn("far", box_xml(), ((0, 1e308, 0), (0, 0, 0, 1))), "position.y"),
-        (lambda: wc.spawn("heavy", box_xml(mass=1e308), at(3, 3, 0.1)), "<mass>"),
+        (lambda: wc.spawn("far", CUBE, ((0, 1e308, 0), (0, 0, 0, 1))), "position.y"),
+        (lambda: wc.spawn("heavy", box_sdf(mass=1e308, visual=False), at(3, 3, 0.1)), "<mass>"),
         (lambda: wc.spawn("u", WHEEL.replace('mass value="5"', 'mass value="nan"'),
                           at(3, -3, 0.1), kind="urdf"), "mass"),
         (lambda: wc.spawn("u", WHEEL.replace('ixx="0.1"', 'ixx="-1"'), at(3, -3, 0.1),
@@ -84,7 +84,7 @@ def test_poison_every_entry_point_then_reset(reset):
     try:
         wc = WorldControl(sim)
         wc.spawn("wall", WALL, at(1.0, 0.0, 0.5))
-        wc.spawn("box", box_xml(), at(2, 2, 0.075))
+        wc.spawn("box", CUBE, at(2, 2, 0.075))
         wc.spawn("w", WHEEL, at(-2, 2, 0.05), kind="urdf")
         run(sim, 0.5)
         rest_wheel = wc.get_model_state("w")[0][0][2]
@@ -117,7 +117,7 @@ def test_a_teleport_repairs_a_poisoned_model():
     sim = Simulation(SimConfig(model="burger", world="empty"))
     try:
         wc = WorldControl(sim)
-        wc.spawn("box", box_xml(), at(2, 2, 0.075))
+        wc.spawn("box", CUBE, at(2, 2, 0.075))
         wc.spawn("w", WHEEL, at(-2, 2, 0.05), kind="urdf")
         poison_the_bullet_state(sim)
         wc.set_model_state(ROBOT, at(1, -1, 0.0), REST)

@@ -1,5 +1,5 @@
 """The <gazebo> blocks of a URDF as the simulator reads them (robot_plugins.read_plugins through
-urdf_file.read_urdf): the shipped TurtleBot3 files against tb3_facts.md section 2 (and 4.5),
+urdf_file.read_urdf): the shipped TurtleBot3 files against doc/turtlebot3.md section 2 (and 4.5),
 edited robots, the one-line errors and the warnings. No ROS master needed.
 Units: m, s, rad, Hz, N*m, m/s^2."""
 import math
@@ -19,11 +19,11 @@ ROOT = Path(__file__).resolve().parents[2]
 URDF = ROOT / "urdf"
 CAMERA_SNIPPET = (Path(__file__).parent / "data" / "burger_camera.xml").read_text()
 
-# --- tb3_facts 2.1-2.4 and 4.5, with the simulator's two choices (IMU at 200 Hz in imu_link) ----
+# --- doc/turtlebot3.md 2.1-2.4 and 4.5, with the simulator's two choices (IMU 200 Hz, imu_link) ---
 
 
 def drive(name, separation):
-    """tb3_facts 2.1: identical for all models but the name and wheelSeparation."""
+    """doc/turtlebot3.md 2.1: identical for all models but the name and wheelSeparation."""
     return DiffDrivePlugin(
         name=name, command_topic="cmd_vel", odometry_topic="odom", odometry_frame="odom",
         robot_base_frame="base_footprint", odometry_source="world", publish_tf=True,
@@ -33,7 +33,7 @@ def drive(name, separation):
         wheel_torque=10.0, robot_namespace="", publish_odom_tf=True)
 
 
-# tb3_facts 2.2: the LDS, the same on every model.
+# doc/turtlebot3.md 2.2: the LDS, the same on every model.
 LDS = LaserSensor(
     name="lds_lfcd_sensor", link="base_scan",
     laser=LaserConfig("gazebo", 0.0, 6.28319, 6.28319 / 359, samples=360, range_min=0.12,
@@ -41,14 +41,14 @@ LDS = LaserSensor(
     topic="scan", frame="base_scan", plugin="gazebo_ros_lds_lfcd_controller",
     robot_namespace="", plugin_file=LASER, pose=(0.0,) * 6, range_resolution=0.015)
 
-# tb3_facts 2.3, but 200 Hz and imu_link (deliberate, see the URDF's comment).
+# doc/turtlebot3.md 2.3, but 200 Hz and imu_link (deliberate, see the URDF's comment).
 IMU_PLUGIN = ImuPlugin(name="imu_plugin", body_name="imu_link", frame_name="imu_link",
                        topic="imu", service_name="imu_service", update_rate=200.0,
                        gaussian_noise=0.0, robot_namespace="")
 
 
 def pi_camera(width, height):
-    """tb3_facts 2.4 (waffle_pi) and 4.5 (AutoRace burger): a Pi camera, libgazebo_ros_camera."""
+    """doc/turtlebot3.md 2.4 (waffle_pi), 4.5 (AutoRace burger): a Pi camera, gazebo_ros_camera."""
     return CameraSensor(
         name="Pi Camera", link="camera_rgb_frame",
         spec=CameraSpec(width, height, 1.085595, 30.0, near=0.03, far=100.0, depth=False,
@@ -114,7 +114,7 @@ def edited(tmp_path, old, new, text=None):
 
 
 def with_camera(text):
-    """``text`` with the README's camera snippet pasted before </robot>."""
+    """``text`` with doc/robots.md's camera snippet pasted before </robot>."""
     return text.replace("</robot>", CAMERA_SNIPPET + "</robot>")
 
 
@@ -144,7 +144,7 @@ def test_a_shorter_slower_noisier_scan(tmp_path):
 
 
 def test_a_camera_on_the_burger(tmp_path):
-    """The README's snippet: a link, a fixed joint and a <gazebo> block give the Burger a camera;
+    """doc/robots.md's snippet: a link, a fixed joint and a <gazebo> block give the Burger a camera;
     without <updateRate> in the plugin the sensor's <update_rate> is the rate."""
     robot = read_urdf(write(tmp_path, with_camera(burger_text())))
     assert robot.plugins.camera == CameraSensor(
@@ -345,7 +345,7 @@ BAD = {
     "pose_five_numbers": ("<pose>0 0 0 0 0 0</pose>", "<pose>0 0 0 0 0</pose>", "<pose>",
                           ["sensor 'lds_lfcd_sensor' <pose>", "six numbers"]),
 }
-# the same, in the Burger with the README's camera
+# the same, in the Burger with doc/robots.md's camera
 BAD_CAMERA = {
     "width_zero": ("<width>640</width>", "<width>0</width>", "<width>",
                    ["sensor 'front_camera' <width>", "must be a positive integer, got '0'"]),

@@ -10,31 +10,7 @@ from tutorial_turtlebot.lab.scan_reading import (
     Scan, bearings, closest, handout_readings, index_at, is_valid, more_open_side,
     nearest_in_sector, range_ahead, range_at, report)
 
-INF = math.inf
-NAN = math.nan
-
-
-def f32(value):
-    """``value`` as a LaserScan float32 field arrives in Python."""
-    return float(np.float32(value))
-
-
-# name -> (angle_min, angle_increment, ray count)
-CONVENTIONS = {
-    "gazebo": (0.0, f32(6.28319 / 359), 360),   # tb3_facts 2.2: ray 359 repeats ray 0
-    "lds01": (0.0, f32(math.radians(1.0)), 360),  # tb3_facts 7: exact degrees
-    "hokuyo": (f32(-math.pi), f32(2 * math.pi / 720), 720),  # ray 360 straight ahead
-}
-
-
-def make_scan(convention, world, range_min=0.12, range_max=3.5):
-    """A scan whose ray at bearing b (rad, [-pi, pi)) reads ``world(b)``."""
-    angle_min, inc, count = CONVENTIONS[convention]
-    ranges = []
-    for i in range(count):
-        b = (angle_min + i * inc + math.pi) % (2 * math.pi) - math.pi
-        ranges.append(f32(world(b)))
-    return Scan(ranges, angle_min, inc, f32(range_min), f32(range_max))
+from unit_helpers import CONVENTIONS, INF, NAN, f32, make_scan
 
 
 def blob(center_deg, half_width_deg, distance, fill=INF):

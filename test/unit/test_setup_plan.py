@@ -63,7 +63,7 @@ VERSION_ID=40
 PRETTY_NAME="Fedora Linux 40 (Workstation Edition)"
 '''
 
-# What the lab's walk-through and the other tools use, on Debian (issue 13 item 1).
+# What the lab's walk-through (doc/lab.md) and the other tools use, on Debian.
 DEBIAN_MUST_HAVE = (
     "ros-std-msgs ros-geometry-msgs ros-sensor-msgs ros-nav-msgs ros-std-srvs ros-rosgraph-msgs "
     "ros-tf2-msgs ros-trajectory-msgs ros-message-generation ros-message-runtime python3-genmsg "

@@ -10,38 +10,13 @@ from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.sim.physics import MAX_ROBOTS
 from tutorial_turtlebot.sim.sim_robot import normalize_namespace
 from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.urdf_file import read_urdf
 from tutorial_turtlebot.sim.world_control import WorldControl
 from tutorial_turtlebot.sim.world_models import RequestError
 
 IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
-
-def at(x, y, yaw=0.0):
-    return (x, y, 0.0), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
-
-
-@pytest.fixture
-def empty():
-    """A Burger at the origin of the empty world, and the world API over it."""
-    sim = Simulation(SimConfig(model="burger", world="empty"))
-    yield sim, WorldControl(sim)
-    sim.close()
-
-
-def urdf_text(model):
-    with open(urdf_path(model)) as f:
-        return f.read()
-
-
-def run(sim, seconds):
-    """Step ``seconds`` of sim time; return how often each (robot name, output) was due."""
-    counts = {}
-    for _ in range(round(seconds / sim.config.time_step)):
-        for robot, name in sim.step():
-            key = (robot.name if robot else None, name)
-            counts[key] = counts.get(key, 0) + 1
-    return counts
+from unit_helpers import at, run, urdf_text
 
 
 @pytest.mark.parametrize("given, normal", [("", ""), ("/", ""), ("tb3_0", "/tb3_0/"),
@@ -79,7 +54,7 @@ def test_robots_see_each_other_but_never_themselves(empty):
     """Burgers 1 m apart face each other: each scan's ray straight ahead ends at the other's
     laser housing, and nothing else is in view (each robot's own body is not)."""
     sim, wc = empty
-    wc.spawn("other", urdf_text("burger"), at(1.0, 0.0, math.pi), kind="urdf",
+    wc.spawn("other", urdf_text("burger"), at(1.0, 0.0, yaw=math.pi), kind="urdf",
              robot_namespace="other")
     run(sim, 0.2)
     for robot in (sim.robot, sim.robots["other"]):
@@ -239,7 +214,7 @@ def test_the_urdf_makes_the_robot(tmp_path):
 
 
 def test_a_camera_added_to_the_burger_is_simulated(tmp_path):
-    """The README's snippet (test/unit/data/burger_camera.xml) pasted into the Burger's URDF:
+    """doc/robots.md's snippet (test/unit/data/burger_camera.xml) pasted into the Burger's URDF:
     the Burger gets a 640x480 camera at 30 Hz, rendering from camera_link along its +x."""
     with open(os.path.join(os.path.dirname(__file__), "data", "burger_camera.xml")) as f:
         snippet = f.read()

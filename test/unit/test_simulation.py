@@ -1,6 +1,6 @@
 """The ROS-free simulator (``Simulation``) with real pybullet physics. No ROS master.
 
-Numbers from tb3_facts.md sections 1, 2 and 4.2; the arena of turtlebot3_world is a hexagonal
+Numbers from doc/turtlebot3.md sections 1, 2 and 4.2; the arena of turtlebot3_world is a hexagonal
 ring with corners on the x axis, inner circumradius 2.933 m and inner flats 2.540 m from the
 centre. Sim time only: nothing here depends on how fast the machine is.
 """
@@ -17,6 +17,8 @@ from tutorial_turtlebot.sim.robot_models import MODELS
 from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
 
+from unit_helpers import run as run_counting
+
 MODEL_NAMES = ("burger", "waffle", "waffle_pi")
 TB3_SPAWN = (-2.0, -0.5)
 ARENA_APOTHEM = 2.540        # centre to each inner flat of the hexagonal wall, m
@@ -24,7 +26,7 @@ ARENA_CIRCUMRADIUS = 2.933   # centre to each inner corner, m
 WALL_NORMALS = [(math.cos(math.radians(a)), math.sin(math.radians(a)))
                 for a in (30, 90, 150, 210, 270, 330)]
 CONTACT_SLOP = 0.005         # m a body may sink into a wall (pybullet margins, soft contact)
-TOTAL_MASS = {"burger": 1.00, "waffle": 1.55, "waffle_pi": 1.55}   # kg (tb3_facts 1.2)
+TOTAL_MASS = {"burger": 1.00, "waffle": 1.55, "waffle_pi": 1.55}   # kg (doc/turtlebot3.md 1.2)
 SCAN_X = {"burger": -0.032, "waffle": -0.064, "waffle_pi": -0.064}  # base_scan in footprint
 
 
@@ -68,12 +70,8 @@ def deepest(points, normal):
 
 
 def run(sim, seconds):
-    """Step ``seconds`` of sim time; return how often each output was due."""
-    counts = {}
-    for _ in range(round(seconds / sim.config.time_step)):
-        for _, name in sim.step():
-            counts[name] = counts.get(name, 0) + 1
-    return counts
+    """Step ``seconds`` of sim time; return how often each output was due (all robots)."""
+    return run_counting(sim, seconds, per_robot=False)
 
 
 def rpy(sim):
@@ -334,8 +332,8 @@ def collision_hulls():
 
 @pytest.mark.parametrize("model, front, rear, half_width", [
     ("burger", 0.038, -0.102, 0.089), ("waffle", 0.073, -0.197, 0.153)])
-def test_collision_outline_matches_tb3_facts(collision_hulls, model, front, rear, half_width):
-    """The hull the wall tests use spans what tb3_facts 1.1 gives (wheels are the widest)."""
+def test_collision_outline_matches_reference(collision_hulls, model, front, rear, half_width):
+    """The hull the wall tests use spans what doc/turtlebot3.md 1.1 gives (wheels: the widest)."""
     points = collision_hulls[model]
     assert points[:, 0].max() == pytest.approx(front, abs=0.002)
     assert points[:, 0].min() == pytest.approx(rear, abs=0.002)

@@ -132,8 +132,8 @@ def test_quaternion_known_values():
 def test_xml_checks():
     assert check_xml(BOX, "file b") == BOX  # sent as written
     for text, words in (("", "file b is empty"), ("  \n", "file b is empty"),
-                        ("<sdf><model>", "invalid XML in file b: no element found: line 1"),
-                        ("<sdf></model>", "invalid XML in file b: mismatched tag")):
+                        ("<sdf><model>", "file b:1: malformed XML: no element found"),
+                        ("<sdf></model>", "file b:1: malformed XML: mismatched tag")):
         with pytest.raises(UserError) as err:
             check_xml(text, "file b")
         assert words in str(err.value)
@@ -193,7 +193,7 @@ def _run(args, stdin=""):
     (["-sdf", "-file", "/nonexistent/box.sdf", "-model", "m", "__name:=s"], 1,
      "spawn_model: error: specified file /nonexistent/box.sdf does not exist"),
     (["-sdf", "-database", "coke_can", "-model", "m"], 1, "no Gazebo model database"),
-    (["-urdf", "-stdin", "-model", "m"], 1, "invalid XML in stdin: mismatched tag"),
+    (["-urdf", "-stdin", "-model", "m"], 1, "stdin:1: malformed XML: mismatched tag"),
 ])
 def test_script_exits_with_one_line(args, status, words):
     done = _run(args, stdin="<robot></link>")

@@ -8,6 +8,8 @@ from tutorial_turtlebot.sim.package_data import data_dir
 from tutorial_turtlebot.sim.spawn_request import MAX_XML_BYTES, parse_spawn, placed
 from tutorial_turtlebot.sim.world_models import RequestError, check_model_name
 
+from unit_helpers import at
+
 BOX = """<sdf version="1.6">
   <model name="box">
     <pose>0 0 0.1 0 0 0</pose>
@@ -30,12 +32,8 @@ URDF = """<?xml version="1.0"?>
 </robot>"""
 
 
-def at(x, y, yaw=0.0):
-    return (x, y, 0.0), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
-
-
 def test_sdf_model_renamed_and_placed_with_its_inertial_and_friction():
-    request = parse_spawn("crate", BOX, at(1.0, 2.0, math.pi / 2))
+    request = parse_spawn("crate", BOX, at(1.0, 2.0, yaw=math.pi / 2))
     world = request.world
     assert request.urdf is None and world.models == ("crate",)
     model = world.model("crate")
@@ -92,8 +90,9 @@ def test_urdf_without_plugins():
     ("<sdf>" + "<model name='m'>" * 100 + "</model>" * 100 + "</sdf>", "nested more than"),
     ("<sdf>" + " " * (MAX_XML_BYTES + 1) + "</sdf>", "more than the 1000000 allowed"),
     (URDF.replace("<sphere radius=\"0.05\"/>", "<mesh filename='package://x/y.stl'/>"),
-     "URDF link 'top' <mesh>: package://x/y.stl: no ROS package 'x'"),
-    (URDF.replace('<parent link="base"/>', '<parent link="nowhere"/>'), "must name links"),
+     "model_xml:4: link 'top' <mesh>: package://x/y.stl: no ROS package 'x'"),
+    (URDF.replace('<parent link="base"/>', '<parent link="nowhere"/>'),
+     "model_xml:5: joint 'hinge' <parent>: link 'nowhere' is not defined"),
 ])
 def test_refused_with_one_line(xml, words):
     with pytest.raises(RequestError) as err:
@@ -114,7 +113,7 @@ def test_bad_names(name):
 
 
 def test_placed_in_a_frame_and_refusing_nan():
-    frame = at(1.0, 0.0, math.pi / 2)
+    frame = at(1.0, 0.0, yaw=math.pi / 2)
     (p, q) = placed(((1.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0)), frame)   # all-zero quaternion
     assert p == pytest.approx((1.0, 1.0, 0.0))
     assert q == pytest.approx(frame[1])

@@ -7,13 +7,9 @@ import pytest
 from tutorial_turtlebot.gazebo import unreachable_publishers
 from tutorial_turtlebot.gazebo.unreachable_publishers import UnreachableLog, describe_error
 
+from unit_helpers import free_port as closed_port
+
 HINT = "is ROS_IP or ROS_HOSTNAME set on its machine?"
-
-
-def closed_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def test_one_line_per_topic_and_publisher():

@@ -1,4 +1,4 @@
-"""The shipped URDF files against tb3_facts.md sections 1, 2.4 and 4.5, and the URDF reader's
+"""The shipped URDF files against doc/turtlebot3.md sections 1, 2.4 and 4.5, and the URDF reader's
 errors. No ROS master needed. Units: m, kg, kg*m^2, rad; poses are child-in-parent."""
 import os
 
@@ -13,7 +13,7 @@ ZERO = (0.0, 0.0, 0.0)
 DOWN = (-1.57, 0.0, 0.0)      # wheel and caster links: z of the link along +y of base_link
 OPTICAL = (-1.57, 0.0, -1.57)  # optical frame: z forward, x right, y down
 
-# --- tb3_facts 1.3 (and 4.5): joint -> (type, parent, child, xyz, rpy) ---------------------------
+# --- doc/turtlebot3.md 1.3 (and 4.5): joint -> (type, parent, child, xyz, rpy) --------------------
 
 BURGER_JOINTS = {
     "base_joint": ("fixed", "base_footprint", "base_link", (0, 0, 0.010), ZERO),
@@ -57,7 +57,7 @@ AUTORACE_JOINTS = dict(BURGER_JOINTS, **{
                                  OPTICAL),
 })
 
-# --- tb3_facts 1.2: link -> (mass, (ixx, ixy, ixz, iyy, iyz, izz)), None = no inertial ---------
+# --- doc/turtlebot3.md 1.2: link -> (mass, (ixx, ixy, ixz, iyy, iyz, izz)), None = no inertial ----
 
 WHEEL = (0.02849894, (1.1175580e-5, -4.2369783e-11, -5.9381719e-9, 1.1192413e-5, -1.4400107e-11,
                       2.0712558e-5))
@@ -86,7 +86,7 @@ WAFFLE_LINKS = dict(WAFFLE_BASE_LINKS, camera_depth_frame=None, camera_depth_opt
 WAFFLE_PI_LINKS = dict(WAFFLE_BASE_LINKS, **CAMERA_RGB_LINKS)
 AUTORACE_LINKS = dict(BURGER_LINKS, **CAMERA_RGB_LINKS)
 
-# --- tb3_facts 1.1: link -> (shape, size, xyz in link) of its one collision -----------------------
+# --- doc/turtlebot3.md 1.1: link -> (shape, size, xyz in link) of its one collision ---------------
 
 WHEEL_SHAPE = ("cylinder", (0.033, 0.018), ZERO)
 CASTER_SHAPE = ("box", (0.030, 0.009, 0.020), (0, 0.001, 0))
@@ -108,7 +108,7 @@ WAFFLE_SHAPES = dict(WAFFLE_BASE_SHAPES,
 WAFFLE_PI_SHAPES = dict(WAFFLE_BASE_SHAPES, camera_link=PI_CAMERA_SHAPE)
 AUTORACE_SHAPES = dict(BURGER_SHAPES, camera_link=PI_CAMERA_SHAPE)
 
-# tb3_facts 1.4: RViz colours of the base (light_black) and of the wheels and LDS (dark)
+# doc/turtlebot3.md 1.4: RViz colours of the base (light_black) and of the wheels and LDS (dark)
 COLOURS = {"base_link": (0.4, 0.4, 0.4, 1.0), "wheel_left_link": (0.3, 0.3, 0.3, 1.0),
            "wheel_right_link": (0.3, 0.3, 0.3, 1.0), "base_scan": (0.3, 0.3, 0.3, 1.0)}
 
@@ -236,7 +236,7 @@ def test_robot_rests_on_its_wheels(key):
 @pytest.mark.parametrize("key", [k for k in ROBOTS if k != ("burger", False)],
                          ids=lambda k: k[0] + ("_camera" if k[1] else ""))
 def test_optical_frame_looks_forward(key):
-    """z forward, x right, y down in base_link (tb3_facts 1.3); AutoRace pitched 10 deg down."""
+    """z forward, x right, y down in base_link (doc/turtlebot3.md 1.3); AutoRace 10 deg down."""
     robot = load(key)
     rotation = robot.transform("base_link", "camera_rgb_optical_frame")[:3, :3]
     pitch = 0.174 if key[1] else 0.0

@@ -19,6 +19,8 @@ from tutorial_turtlebot.sim.urdf_file import read_urdf, read_urdf_text, urdf_pat
 from tutorial_turtlebot.sim.world_control import WorldControl
 from tutorial_turtlebot.sim.world_models import RequestError
 
+from unit_helpers import run, write
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 FIXTURES = os.path.normpath(os.path.join(HERE, os.pardir, "fixtures"))
 DESCRIPTION = os.path.join(FIXTURES, "turtlebot3_description")
@@ -32,13 +34,6 @@ import make_meshes  # noqa: E402  (the fixture's STL writer)
 def fixture_package(monkeypatch):
     """turtlebot3_description (the fixture) on ROS_PACKAGE_PATH, as the rostests put it."""
     monkeypatch.setenv("ROS_PACKAGE_PATH", FIXTURES + ":" + os.environ.get("ROS_PACKAGE_PATH", ""))
-
-
-def write(folder, name, text):
-    path = os.path.join(str(folder), name)
-    with open(path, "w") as f:
-        f.write(text)
-    return path
 
 
 def crate_stl(folder, name="crate.stl", half=100.0):
@@ -253,11 +248,6 @@ def dynamics(sim, body):
     cid = sim.physics.client
     return [pybullet.getDynamicsInfo(body, j, physicsClientId=cid)[:3]
             for j in range(-1, pybullet.getNumJoints(body, physicsClientId=cid))]
-
-
-def run(sim, seconds):
-    for _ in range(round(seconds / sim.config.time_step)):
-        sim.step()
 
 
 def test_a_mesh_robot_weighs_what_its_inertials_say_and_drives(sims, tmp_path, monkeypatch):

@@ -15,13 +15,6 @@ HULL_MARGIN = 0.0015    # pybullet inflates convex hulls (polylines) by its 1 mm
 
 
 @pytest.fixture
-def client():
-    cid = pybullet.connect(pybullet.DIRECT)
-    yield cid
-    pybullet.disconnect(physicsClientId=cid)
-
-
-@pytest.fixture
 def tb3(client):
     return build_world(load_world(resolve_world("turtlebot3_world")[0]), client), client
 

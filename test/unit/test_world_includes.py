@@ -109,4 +109,4 @@ def test_errors_inside_an_included_model_name_its_file(tmp_path, models):
     model_folder(models, "bad", '<link name="l"><collision name="c"><geometry><box><size>1 x 1'
                                 '</size></box></geometry></collision></link>')
     message = fault(world_file(tmp_path, '<include><uri>model://bad</uri></include>'))
-    assert "bad/model.sdf:6: <size> needs 3 numbers" in message
+    assert "bad/model.sdf:6: <size>: must be 3 numbers" in message

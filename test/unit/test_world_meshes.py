@@ -27,13 +27,6 @@ def model_path(monkeypatch):
     monkeypatch.setenv("GAZEBO_MODEL_PATH", MODELS)
 
 
-@pytest.fixture
-def client():
-    cid = pybullet.connect(pybullet.DIRECT)
-    yield cid
-    pybullet.disconnect(physicsClientId=cid)
-
-
 def world_with(tmp_path, body):
     path = tmp_path / "test.world"
     path.write_text('<?xml version="1.0"?>\n<sdf version="1.6">\n<world name="w">\n'

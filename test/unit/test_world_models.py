@@ -9,33 +9,7 @@ from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world_control import RequestError, WorldControl
 from tutorial_turtlebot.sim.world_models import robot_model_name
 
-STEPS_PER_S = 400   # at the default 2.5 ms step
-
-
-def box_xml(size=0.15, mass=0.1, static=False):
-    inertia = mass * size * size / 6
-    return ("<sdf version='1.6'><model name='x'>%s<link name='link'><inertial><mass>%g</mass>"
-            "<inertia><ixx>%g</ixx><iyy>%g</iyy><izz>%g</izz></inertia></inertial>"
-            "<collision name='c'><geometry><box><size>%g %g %g</size></box></geometry></collision>"
-            "<visual name='v'><geometry><box><size>%g %g %g</size></box></geometry></visual>"
-            "</link></model></sdf>" % ("<static>1</static>" if static else "", mass, inertia,
-                                       inertia, inertia, *(size,) * 6))
-
-
-@pytest.fixture
-def empty():
-    sim = Simulation(SimConfig(model="burger", world="empty"))
-    yield sim, WorldControl(sim)
-    sim.close()
-
-
-def run(sim, seconds):
-    for _ in range(int(seconds * STEPS_PER_S)):
-        sim.step()
-
-
-def at(x, y, z=0.0, yaw=0.0):
-    return (x, y, z), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+from unit_helpers import at, box_sdf, run
 
 
 @pytest.mark.parametrize("world, model, names", [
@@ -67,11 +41,11 @@ def test_robot_name_param_overrides():
 
 def test_spawn_order_and_duplicate_and_delete(empty):
     sim, wc = empty
-    wc.spawn("a", box_xml(), at(1, 1, 0.075))
-    wc.spawn("b", box_xml(), at(1, -1, 0.075))
+    wc.spawn("a", box_sdf(), at(1, 1, 0.075))
+    wc.spawn("b", box_sdf(), at(1, -1, 0.075))
     assert sim.models.names() == ["ground_plane", "turtlebot3_burger", "a", "b"]
     with pytest.raises(RequestError, match="entity already exists"):
-        wc.spawn("a", box_xml(), at(2, 2, 0.075))
+        wc.spawn("a", box_sdf(), at(2, 2, 0.075))
     wc.delete("a")
     assert sim.models.names() == ["ground_plane", "turtlebot3_burger", "b"]
     with pytest.raises(RequestError, match="DeleteModel: model does not exist"):
@@ -83,7 +57,7 @@ def test_spawn_order_and_duplicate_and_delete(empty):
 
 def test_the_robot_pushes_a_light_box(empty):
     sim, wc = empty
-    wc.spawn("box", box_xml(), at(0.4, 0.0, 0.075))
+    wc.spawn("box", box_sdf(), at(0.4, 0.0, 0.075))
     run(sim, 0.5)
     start = wc.get_model_state("box")[0][0]
     sim.command(0.2, 0.0)
@@ -100,7 +74,7 @@ def test_a_box_knocked_off_a_table_falls(empty):
              "<collision name='c'><geometry><box><size>0.6 0.6 0.05</size></box></geometry>"
              "</collision></link></model></sdf>")
     wc.spawn("table", table, at(0, 0))
-    wc.spawn("box", box_xml(size=0.1), at(1.0, 0.0, 0.475))
+    wc.spawn("box", box_sdf(size=0.1), at(1.0, 0.0, 0.475))
     run(sim, 1.0)
     assert wc.get_model_state("box")[0][0][2] == pytest.approx(0.475, abs=0.01)   # on the table
     wc.set_model_state("box", wc.get_model_state("box")[0], ((4.0, 0.0, 0.0), (0, 0, 0)))
@@ -110,7 +84,7 @@ def test_a_box_knocked_off_a_table_falls(empty):
 
 def test_spawned_and_world_models_go_back_to_their_spawn(empty):
     sim, wc = empty
-    wc.spawn("box", box_xml(), at(0.5, 1.0, 0.075, yaw=0.5))
+    wc.spawn("box", box_sdf(), at(0.5, 1.0, 0.075, yaw=0.5))
     wc.set_model_state("box", at(2, 2, 0.075), ((0.5, 0, 0), (0, 0, 0)))
     wc.set_model_state("turtlebot3_burger", at(-1, -1), rf.ZERO_TWIST)
     run(sim, 0.5)
@@ -128,8 +102,8 @@ def test_spawned_and_world_models_go_back_to_their_spawn(empty):
 
 def test_teleport_with_a_frame_and_zero_twist_stops(empty):
     sim, wc = empty
-    wc.spawn("box", box_xml(), at(1.0, 0.0, 0.075, yaw=math.pi / 2))
-    wc.spawn("other", box_xml(), at(3.0, 3.0, 0.075))
+    wc.spawn("box", box_sdf(), at(1.0, 0.0, 0.075, yaw=math.pi / 2))
+    wc.spawn("other", box_sdf(), at(3.0, 3.0, 0.075))
     wc.set_model_state("other", at(1.0, 0.0, 0.0), ((1.0, 0, 0), (0, 0, 0)), reference="box")
     pose, twist, _ = wc.get_model_state("other")
     assert pose[0] == pytest.approx((1.0, 1.0, 0.075), abs=1e-6)     # box's +x is world +y
@@ -152,7 +126,7 @@ def test_failure_answers(empty):
                                     rf.ZERO_TWIST), "NaN"),
         (lambda: wc.get_link_state("turtlebot3_burger::nope"), "does not exist"),
         (lambda: wc.model_properties("nope"), "GetModelProperties: model does not exist"),
-        (lambda: wc.spawn("b", box_xml(), at(0, 0), reference="nope"), "reference_frame"),
+        (lambda: wc.spawn("b", box_sdf(), at(0, 0), reference="nope"), "reference_frame"),
     ]
     for call, words in cases:
         with pytest.raises(RequestError, match=words):

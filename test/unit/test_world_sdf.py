@@ -309,7 +309,7 @@ def test_not_an_sdf_file(tmp_path):
 
 def test_missing_file_is_named(tmp_path):
     missing = str(tmp_path / "nowhere.world")
-    assert "not found" in fault(missing)
+    assert "cannot read world file: No such file" in fault(missing)
     with pytest.raises(WorldError, match="nowhere.world"):
         resolve_world(missing)
 

@@ -1,5 +1,5 @@
-"""turtlebot3_house and turtlebot3_autorace (tb3_facts.md 4.3, 4.5), the spawn check
-(spawn_check) and the turtlebot3_gazebo launch names (tb3_facts.md 4.1). No ROS master.
+"""turtlebot3_house and turtlebot3_autorace (doc/turtlebot3.md 4.3, 4.5), the spawn check
+(spawn_check) and the turtlebot3_gazebo launch names (doc/turtlebot3.md 4.1). No ROS master.
 
 Every file in worlds/ passing `ign sdf -k` and loading is test_world_sdf.py's job (it globs them).
 """
@@ -92,7 +92,7 @@ FURNITURE = ("Mailbox", "bookshelf", "bookshelf_0", "bookshelf_1", "cabinet", "c
              "cabinet_1", "cafe_table", "cafe_table_0", "first_2015_trash_can",
              "first_2015_trash_can_0", "table", "table_marble")
 
-# tb3_facts 4.3: footprints at z < 0.5 (x range, y range) and the openings at ground level.
+# doc/turtlebot3.md 4.3: footprints at z < 0.5 (x range, y range) and the openings at ground level.
 WALL_FOOTPRINTS = {
     "Wall_87": ((-7.58, -5.08), (-4.00, -3.85), None),
     "Wall_88": ((-5.23, -5.08), (-4.00, 1.00), None),
@@ -263,7 +263,7 @@ def test_furniture_poses(house):
 # --- AutoRace -----------------------------------------------------------------------------------
 
 AUTORACE_SPAWN = WORLDS["turtlebot3_autorace"].spawn
-TUNNEL_WALLS = {                # tb3_facts 4.5: (x range, y range)
+TUNNEL_WALLS = {                # doc/turtlebot3.md 4.5: (x range, y range)
     "tunnel::link::wall_west": ((-1.945, -1.945), (-1.986, 0.014)),
     "tunnel::link::wall_south": ((-1.965, 0.035), (-1.971, -1.971)),
     "tunnel::link::wall_east": ((-0.021, -0.021), (-1.62, -0.08)),
@@ -392,7 +392,7 @@ def test_laser_at_the_spawn_sees_the_tunnel_not_the_lines(autorace_bullet):
 
 
 def test_camera_view_at_the_spawn():
-    """What the AutoRace burger's camera (tb3_facts 4.5: 320 x 240, HFOV 1.085595, pitched 10
+    """What the AutoRace burger's camera (doc/turtlebot3.md 4.5: 320x240, HFOV 1.085595, pitched 10
     degrees down) shows at the spawn, rendered by the sim's own camera (what /camera/image
     publishes): yellow lane pixels in the left half, white ones in the right, dark floor
     between."""
@@ -519,7 +519,7 @@ def test_footprint_radius_of_the_models():
 
 # --- launch files -------------------------------------------------------------------------------
 
-LAUNCHES = {                    # tb3_facts 4.1: launch -> (world, x_pos, y_pos, z_pos)
+LAUNCHES = {                    # doc/turtlebot3.md 4.1: launch -> (world, x_pos, y_pos, z_pos)
     "turtlebot3_empty_world": ("empty", 0.0, 0.0, 0.0),
     "turtlebot3_world": ("turtlebot3_world", -2.0, -0.5, 0.0),
     "turtlebot3_house": ("turtlebot3_house", -3.0, 1.0, 0.0),

@@ -1,6 +1,6 @@
 """gazebo_ros's ``Physics.cfg`` as the module dynamic_reconfigure's generator makes of it
 (``PhysicsConfig.py``), written out here so that no build step is needed: the parameters,
-types, defaults and limits of gazebo_ros_pkgs ``gazebo_ros/cfg/Physics.cfg`` (gazebo_api.md 2.6),
+types, defaults and limits of ``gazebo_ros/cfg/Physics.cfg`` (doc/turtlebot3.md 2.6),
 all at level 1, in the form ``dynamic_reconfigure.server.Server`` reads.
 """
 from dynamic_reconfigure.encoding import extract_params

@@ -1,4 +1,4 @@
-"""dynamic_reconfigure of the physics on ``/gazebo``, as gazebo_ros has it (gazebo_api.md 2.6).
+"""dynamic_reconfigure of the physics on ``/gazebo``, as gazebo_ros has it (doc/turtlebot3.md 2.6).
 
 The server starts from the simulator's physics properties (not the cfg defaults); later
 changes are compared with them and pushed as one set_physics_properties, in the simulation loop.

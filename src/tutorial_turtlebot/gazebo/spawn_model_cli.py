@@ -46,8 +46,7 @@ import signal
 import sys
 import threading
 import time
-import xml.etree.ElementTree as ElementTree
-from typing import List, Optional, Tuple
+from typing import List, Optional
 
 import rosgraph
 import rospy
@@ -55,6 +54,8 @@ from geometry_msgs.msg import Point, Pose, Quaternion
 from std_srvs.srv import Empty
 
 from ..errors import UserError
+from ..sim import xml_reader
+from ..sim.kinematics import quat_from_rpy as quaternion_from_rpy  # noqa: F401 - its -R -P -Y
 
 PROG = "spawn_model"
 USAGE = ("spawn_model -urdf|-sdf -file FILE|-param PARAM|-stdin -model NAME [options] "
@@ -144,27 +145,11 @@ def parse_args(args: List[str], default_robot_namespace: str = "/") -> argparse.
     return parsed
 
 
-def quaternion_from_rpy(roll: float, pitch: float, yaw: float) -> Tuple[float, float, float, float]:
-    """(x, y, z, w) of the rotation by ``roll`` about x, then ``pitch`` about y, then ``yaw``
-    about z, all fixed axes (tf.transformations.quaternion_from_euler's default 'sxyz', SDF's
-    and URDF's rpy)."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy,
-            cr * cp * cy + sr * sp * sy)
-
-
 def check_xml(text: str, where: str) -> str:
     """``text`` if it is well-formed XML, else UserError naming ``where`` it came from."""
     if not text.strip():
         raise UserError("%s is empty: no model XML" % where)
-    try:
-        ElementTree.fromstring(text)
-    except ElementTree.ParseError as err:
-        raise UserError("invalid XML in %s: %s" % (where, err)) from None
+    xml_reader.parse(text, where)   # UserError in xml_reader's one-line form
     return text
 
 

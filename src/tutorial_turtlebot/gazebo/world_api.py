@@ -21,8 +21,8 @@ Services:
   ~apply_joint_effort, ~clear_joint_forces, ~get_link_properties, ~set_link_properties,
   ~get_joint_properties, ~set_model_configuration, ~get_light_properties,
   ~set_light_properties; dynamic_reconfigure of the physics (gazebo/physics_config) on ``~``.
-  get_model_properties' geom_names are Gazebo's collision names (world_models.
-  urdf_collision_names for a URDF: "<link>_collision", "<link>_fixed_joint_lump__<child>_
+  get_model_properties' geom_names are Gazebo's collision names (urdf_file.RobotDescription.
+  collision_names for a URDF: "<link>_collision", "<link>_fixed_joint_lump__<child>_
   collision_<i>"). The wrench, effort, link, joint and light semantics: sim/world_control.
 Parameters:
   ~model_states_rate (100.0)  Hz of sim time; 0 = never publish model/link states

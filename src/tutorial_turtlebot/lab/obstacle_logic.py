@@ -12,7 +12,7 @@ import numpy as np
 from .scan_reading import bearings, more_open_side, nearest_in_sector, obstacle_ranges
 
 # Radius (m) of the circle a TurtleBot3 sweeps when it turns in place about base_footprint: the
-# farthest corner of its navigation footprint (tb3_facts.md 1.1), rounded up.
+# farthest corner of its navigation footprint (doc/turtlebot3.md 1.1), rounded up.
 TURN_RADIUS = {"burger": 0.15, "waffle": 0.26, "waffle_pi": 0.26}
 
 

@@ -170,7 +170,8 @@ def _version(text: str) -> Tuple[int, ...]:
 def model_sdf_file(model_dir: str, parse_xml) -> str:
     """The SDF file of the model folder ``model_dir``: of the ``<sdf version>`` entries of its
     model.config, the highest version Gazebo 11 reads. ``parse_xml(data, source)`` is the
-    line-numbered XML reader. AssetError if there is none."""
+    line-numbered XML reader (xml_reader.parse raising the caller's error). AssetError if there
+    is none."""
     config = os.path.join(model_dir, "model.config")
     try:
         with open(config, "rb") as f:
@@ -181,8 +182,8 @@ def model_sdf_file(model_dir: str, parse_xml) -> str:
     entries = []
     for node in root.all("sdf"):
         version = _version(node.attrib.get("version", ""))
-        if node.text and version and version <= MAX_SDF_VERSION:
-            entries.append((version, node.text))
+        if node.value and version and version <= MAX_SDF_VERSION:
+            entries.append((version, node.value))
     if not entries:
         raise AssetError("%s:%d: model.config names no <sdf version=\"1.x\">file</sdf> of "
                          "version 1.7 or older" % (config, root.line))

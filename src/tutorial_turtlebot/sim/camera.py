@@ -1,6 +1,6 @@
 """Camera images as Gazebo's camera plugins make them, rendered by pybullet. Knows nothing of ROS.
 
-- ``CameraIntrinsics``: the CameraInfo that gazebo_ros_camera_utils publishes (tb3_facts 2.4).
+- ``CameraIntrinsics``: the CameraInfo gazebo_ros_camera_utils publishes (doc/turtlebot3.md 2.4).
 - ``enable_egl`` / ``disable_egl``: pybullet's EGL renderer plugin (Mesa or a GPU), loaded right
   after ``pybullet.connect`` and before any body exists; ``CameraRenderer`` falls back to
   pybullet's TinyRenderer (CPU) where it does not load.

@@ -1,4 +1,4 @@
-"""Differential drive as Gazebo's ``libgazebo_ros_diff_drive`` does it (tb3_facts 2.1).
+"""Differential drive as Gazebo's ``libgazebo_ros_diff_drive`` does it (doc/turtlebot3.md 2.1).
 
 A command (linear.x m/s, angular.z rad/s) becomes rim speeds ``v -/+ w * separation / 2`` for the
 left/right wheel; on every control tick each rim speed moves toward its target by at most

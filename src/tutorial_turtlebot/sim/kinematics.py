@@ -1,13 +1,24 @@
 """Rotations and small rigid-body helpers: every conversion between roll-pitch-yaw, quaternion
 and 3x3 matrix lives here. Quaternions are (x, y, z, w), as pybullet and geometry_msgs order
 them; vectors are (x, y, z) in metres or m/s; angles in radians, REP 103. Roll, pitch, yaw are
-fixed-axis angles as SDF and URDF define them: R = Rz(yaw) Ry(pitch) Rx(roll)."""
+fixed-axis angles as SDF and URDF define them: R = Rz(yaw) Ry(pitch) Rx(roll).
+
+The simulator's one pose type is ``Pose``: ((x, y, z), (qx, qy, qz, qw)), a child frame's
+position (m) and orientation in its parent frame. ``XyzRpy`` is not a second pose type but the
+six numbers SDF and URDF write one as ("x y z roll pitch yaw"); the functions below convert."""
 import math
 from typing import Sequence, Tuple
 
 import numpy as np
 
+Vector3 = Tuple[float, float, float]
 Quat = Tuple[float, float, float, float]
+Pose = Tuple[Vector3, Quat]
+XyzRpy = Tuple[float, float, float, float, float, float]   # x, y, z (m), roll, pitch, yaw (rad)
+
+IDENTITY_QUAT: Quat = (0.0, 0.0, 0.0, 1.0)
+IDENTITY: Pose = ((0.0, 0.0, 0.0), IDENTITY_QUAT)
+ZERO_XYZ_RPY: XyzRpy = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 def yaw_from_quat(q: Sequence[float]) -> float:
@@ -100,3 +111,31 @@ def quat_from_matrix(m) -> Quat:
     q[k] = (m[k][i] + m[i][k]) / s
     q[3] = (m[k][j] - m[j][k]) / s
     return tuple(q)
+
+
+def pose_from_xyz_rpy(values: Sequence[float]) -> Pose:
+    """The ``Pose`` of the six numbers (x, y, z, roll, pitch, yaw) of an SDF or URDF pose."""
+    return tuple(values[:3]), quat_from_rpy(*values[3:6])
+
+
+def xyz_rpy_from_pose(pose: Pose) -> XyzRpy:
+    """The six numbers (x, y, z, roll, pitch, yaw) of a ``Pose``, the inverse of
+    ``pose_from_xyz_rpy``."""
+    return tuple(pose[0]) + rpy_from_quat(pose[1])
+
+
+def transform_from_xyz_rpy(xyz: Sequence[float], rpy: Sequence[float]) -> np.ndarray:
+    """4x4 homogeneous transform T of a child frame at ``xyz`` (m) turned by ``rpy`` (rad) in
+    its parent: p_parent = T @ p_child."""
+    t = np.eye(4)
+    t[:3, :3] = matrix_from_rpy(*rpy)
+    t[:3, 3] = xyz
+    return t
+
+
+def compose_xyz_rpy(parent: Sequence[float], child: Sequence[float]) -> XyzRpy:
+    """The pose ``child`` (x, y, z, roll, pitch, yaw in the ``parent`` frame) expressed where
+    ``parent`` is given, as six numbers again."""
+    r = matrix_from_rpy(*parent[3:])
+    x, y, z = (float(v) for v in np.asarray(parent[:3]) + r @ np.asarray(child[:3]))
+    return (x, y, z) + rpy_from_matrix(r @ matrix_from_rpy(*child[3:]))

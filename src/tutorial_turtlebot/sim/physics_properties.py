@@ -31,7 +31,7 @@ ODE_RANGES = {
 
 @dataclass(frozen=True)
 class OdeConfig:
-    """gazebo_msgs/ODEPhysics; defaults are the TurtleBot3 worlds' (gazebo_api.md 2.6) except
+    """gazebo_msgs/ODEPhysics; defaults are the TurtleBot3 worlds' (doc/turtlebot3.md 2.6) except
     the applied ones, which start as this simulator runs."""
 
     auto_disable_bodies: bool = False

@@ -4,7 +4,7 @@ A pose is ((x, y, z), (qx, qy, qz, qw)); a twist is ((vx, vy, vz), (wx, wy, wz))
 and angular in rad/s, both in the world frame unless said otherwise. A reference frame is the
 pose and twist of another model or link; "", "world", "map" and "/map" name the world itself.
 
-The rules (gazebo_api.md 2.3), which are Gazebo's, not textbook kinematics:
+The rules (doc/turtlebot3.md 8.2), which are Gazebo's, not textbook kinematics:
 - get_model_state / get_link_state relative to a frame F: pose = F^-1 * pose;
   velocities = R_F^-1 (v - v_F), with no omega x r term.
 - set_model_state relative to F: pose = F * pose; the twist is rotated into the world
@@ -14,15 +14,12 @@ The rules (gazebo_api.md 2.3), which are Gazebo's, not textbook kinematics:
 import math
 from typing import Sequence, Tuple
 
-from .kinematics import quat_from_rpy, rpy_from_quat  # noqa: F401 - the world API's conversions
+# the world API's pose type and conversions are kinematics' own
+from .kinematics import (IDENTITY, IDENTITY_QUAT, Pose, Quat, quat_from_rpy,  # noqa: F401
+                         rpy_from_quat)
+from .kinematics import Vector3 as Vec
 
-Vec = Tuple[float, float, float]
-Quat = Tuple[float, float, float, float]
-Pose = Tuple[Vec, Quat]
 Twist = Tuple[Vec, Vec]
-
-IDENTITY_QUAT: Quat = (0.0, 0.0, 0.0, 1.0)
-IDENTITY: Pose = ((0.0, 0.0, 0.0), IDENTITY_QUAT)
 ZERO_TWIST: Twist = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
 WORLD_FRAMES = ("", "world", "map", "/map")
 

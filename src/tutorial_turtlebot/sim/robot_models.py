@@ -1,4 +1,4 @@
-"""The three TurtleBot3 models: what no URDF holds (tb3_facts.md 2.5).
+"""The three TurtleBot3 models: what no URDF holds (doc/turtlebot3.md 2.5).
 
 A robot's drive, laser, IMU and camera come from its URDF's ``<gazebo>`` blocks
 (``robot_plugins``); what is here is the firmware's and turtlebot3_teleop_key's speed limits and

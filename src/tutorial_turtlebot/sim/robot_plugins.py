@@ -18,11 +18,12 @@ parameter the plugin does not have). Wrong values raise a one-line UrdfError.
 import math
 import os
 from dataclasses import dataclass
-from typing import Callable, Collection, Dict, List, Mapping, NoReturn, Optional, Tuple
-from xml.etree import ElementTree
+from typing import Collection, Dict, List, Mapping, Optional, Tuple
 
 from ..errors import UrdfError
+from .kinematics import ZERO_XYZ_RPY, XyzRpy
 from .lidar import LaserConfig
+from .xml_reader import Element, XmlReader
 
 DIFF_DRIVE = "libgazebo_ros_diff_drive.so"
 LASER = "libgazebo_ros_laser.so"
@@ -30,9 +31,6 @@ GPU_LASER = "libgazebo_ros_gpu_laser.so"
 IMU = "libgazebo_ros_imu.so"
 CAMERA = "libgazebo_ros_camera.so"
 OPENNI_KINECT = "libgazebo_ros_openni_kinect.so"
-
-Pose6 = Tuple[float, float, float, float, float, float]
-ZERO_POSE: Pose6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -94,7 +92,7 @@ class LaserSensor:
     plugin: str = ""                       # the plugin's name
     robot_namespace: str = ""
     plugin_file: str = LASER               # or GPU_LASER on a gpu_ray sensor
-    pose: Pose6 = ZERO_POSE                # the sensor's <pose> in its link: x y z roll pitch yaw
+    pose: XyzRpy = ZERO_XYZ_RPY            # the sensor's <pose> in its link: x y z roll pitch yaw
     range_resolution: float = 0.0          # m, <range><resolution> (not simulated)
 
 
@@ -136,7 +134,7 @@ class CameraSensor:
     point_cloud_topic: str = "depth/points"
     point_cloud_cutoff: float = 0.4              # m
     robot_namespace: str = ""
-    pose: Pose6 = ZERO_POSE                      # the sensor's <pose> in its link
+    pose: XyzRpy = ZERO_XYZ_RPY                  # the sensor's <pose> in its link
     point_cloud_cutoff_max: float = 5.0          # m
 
 
@@ -195,17 +193,17 @@ def plugin_file(filename: str) -> str:
     return name
 
 
-def read_plugins(robot: ElementTree.Element, links: Collection[str],
-                 joint_types: Mapping[str, str], path: str,
-                 lines: Mapping[ElementTree.Element, int]) -> RobotPlugins:
+def read_plugins(robot: Element, links: Collection[str], joint_types: Mapping[str, str],
+                 path: str) -> RobotPlugins:
     """The plugins and sensors of the ``<gazebo>`` children of ``robot`` (a URDF ``<robot>``
-    element whose ``links`` and joints, ``joint_types`` = {name: type}, are already read).
+    element of xml_reader, whose ``links`` and joints, ``joint_types`` = {name: type}, are
+    already read).
 
     What gazebo_ros would load becomes a dataclass above; what it would not, or what this
     simulator does not make, becomes one line in ``warnings``. A wrong value raises UrdfError
-    ``<path>:<line>: <element>: <problem>`` (``lines`` gives each element's line).
+    in xml_reader's one-line form ``<path>:<line>: <element>: <problem>``.
     """
-    return _PluginReader(path, lines, links, joint_types).read(robot)
+    return _PluginReader(path, links, joint_types).read(robot)
 
 
 def _strip_slash(name: str) -> str:
@@ -213,12 +211,11 @@ def _strip_slash(name: str) -> str:
     return name[1:] if name.startswith("/") else name
 
 
-class _PluginReader:
+class _PluginReader(XmlReader):
     """One pass over the <gazebo> blocks of one robot."""
 
-    def __init__(self, path, lines, links, joint_types):
-        self.path = path
-        self.lines = lines
+    def __init__(self, path, links, joint_types):
+        super().__init__(path, UrdfError)
         self.links = links
         self.joint_types = joint_types
         self.warnings: List[str] = []
@@ -253,13 +250,13 @@ class _PluginReader:
         material, selfCollide, ...) are accepted as they are (pybullet has its own contacts)."""
         target = _strip_slash(reference)
         if target not in self.links and target not in self.joint_types:
-            self._fail(block, "reference %r is not a link of this robot" % reference)
+            self.fail(block, "reference %r is not a link of this robot" % reference)
         for child in block:
             if child.tag == "plugin":
                 self._plugin_id(child)
                 self._warn("%s is inside <gazebo reference=%r>, where Gazebo loads no plugin "
                            "(model plugins go in a <gazebo> block without reference); %s"
-                           % (self._describe(child), reference, NOT_SIMULATED))
+                           % (self.describe(child), reference, NOT_SIMULATED))
             elif child.tag == "sensor":
                 if target in self.links:
                     self._sensor(child, target)
@@ -276,13 +273,13 @@ class _PluginReader:
         elif filename in SENSOR_PLUGIN.values():
             self._warn("%s is a sensor plugin outside any <sensor>: Gazebo loads it only inside "
                        "a <sensor> in a <gazebo reference=...> block; %s"
-                       % (self._describe(elem), NOT_SIMULATED))
+                       % (self.describe(elem), NOT_SIMULATED))
         else:
-            self._warn("%s is not simulated here; %s" % (self._describe(elem), NOT_SIMULATED))
+            self._warn("%s is not simulated here; %s" % (self.describe(elem), NOT_SIMULATED))
 
     def _sensor(self, elem, link) -> None:
-        kind = self._attr(elem, "type")
-        self._attr(elem, "name")
+        kind = self.attr(elem, "type")
+        self.attr(elem, "name")
         wanted = SENSOR_PLUGIN.get(kind)
         plugins = elem.findall("plugin")
         if wanted is None:
@@ -293,7 +290,7 @@ class _PluginReader:
             # imu_link): nothing to make. A ROS plugin on it is another matter.
             for plugin in plugins if kind == "imu" else ():
                 self._warn("%s is not simulated here; %s"
-                           % (self._describe(plugin), NOT_SIMULATED))
+                           % (self.describe(plugin), NOT_SIMULATED))
             return
         ros_plugin = None
         for plugin in plugins:
@@ -306,11 +303,11 @@ class _PluginReader:
             elif filename in SENSOR_PLUGIN.values():
                 needs = [k for k, v in SENSOR_PLUGIN.items() if v == filename][0]
                 self._warn('%s on %s is of the wrong kind (it needs a <sensor type="%s">); %s'
-                           % (self._describe(plugin), self._sensor_id(elem), needs,
+                           % (self.describe(plugin), self._sensor_id(elem), needs,
                               NOT_SIMULATED))
             else:
                 self._warn("%s is not simulated here; %s"
-                           % (self._describe(plugin), NOT_SIMULATED))
+                           % (self.describe(plugin), NOT_SIMULATED))
         if ros_plugin is None:
             return  # no ROS plugin: Gazebo publishes nothing of it on ROS; nor do we
         if kind in ("ray", "gpu_ray"):
@@ -328,7 +325,7 @@ class _PluginReader:
         if source_elem is not None:
             source = self._text(source_elem)
             if source not in ("world", "encoder"):
-                self._fail(source_elem, "must be world or encoder, got %r" % source, elem)
+                self.fail(source_elem, "must be world or encoder, got %r" % source, elem)
         number = self._number
         return DiffDrivePlugin(
             name=name,
@@ -353,7 +350,7 @@ class _PluginReader:
     def _imu(self, elem, name) -> ImuPlugin:
         self._check_params(elem, IMU)
         if elem.find("bodyName") is None:
-            self._fail(elem, "missing <bodyName> (the link the IMU reads)")
+            self.fail(elem, "missing <bodyName> (the link the IMU reads)")
         body = self._link(elem, "bodyName", "", elem)
         # topicName and serviceName default to /default_imu in gazebo_ros_imu.
         return ImuPlugin(
@@ -368,7 +365,7 @@ class _PluginReader:
     def _laser(self, sensor, plugin, link) -> LaserSensor:
         filename = plugin_file(plugin.get("filename", ""))
         self._check_params(plugin, filename)
-        ray = self._child(sensor, "ray")
+        ray = self.child(sensor, "ray")
         scan = ray.find("scan")
         horizontal = scan.find("horizontal") if scan is not None else None
         samples = self._integer(horizontal, "samples", 640, sensor)
@@ -376,20 +373,20 @@ class _PluginReader:
         angle_min = self._number(horizontal, "min_angle", 0.0, sensor)
         angle_max = self._number(horizontal, "max_angle", 0.0, sensor)
         if angle_min >= angle_max:
-            self._fail(self._find(horizontal, "max_angle", sensor),
+            self.fail(self._find(horizontal, "max_angle", sensor),
                        "max_angle %g must be greater than min_angle %g" % (angle_max, angle_min),
                        sensor)
         vertical = scan.find("vertical") if scan is not None else None
         if vertical is not None and self._integer(vertical, "samples", 1, sensor) > 1:
             self._warn("%s: a scan of several vertical planes is not simulated; only the "
                        "horizontal plane is" % self._sensor_id(sensor))
-        ranges = self._child(ray, "range", sensor)
+        ranges = self.child(ray, "range", sensor)
         range_min = self._number(ranges, "min", 0.0, sensor, _non_negative)
         if ranges.find("max") is None:
-            self._fail(ranges, "missing <max>", sensor)
+            self.fail(ranges, "missing <max>", sensor)
         range_max = self._number(ranges, "max", 0.0, sensor)
         if range_min >= range_max:
-            self._fail(ranges.find("max"), "max %g must be greater than min %g"
+            self.fail(ranges.find("max"), "max %g must be greater than min %g"
                        % (range_max, range_min), sensor)
         sigma = self._noise(ray.find("noise"), sensor)
         rate = self._number(sensor, "update_rate", 0.0, sensor, _non_negative)
@@ -414,7 +411,7 @@ class _PluginReader:
             return 0.0
         kind = self._string(noise, "type", "gaussian")
         if kind not in NOISE_TYPES:
-            self._fail(noise.find("type"), "must be one of %s, got %r"
+            self.fail(noise.find("type"), "must be one of %s, got %r"
                        % (", ".join(NOISE_TYPES), kind), sensor)
         mean = self._number(noise, "mean", 0.0, sensor)
         sigma = self._number(noise, "stddev", 0.0, sensor, _non_negative)
@@ -442,7 +439,7 @@ class _PluginReader:
         near = self._number(clip, "near", 0.1, sensor, _positive)
         far = self._number(clip, "far", 100.0, sensor, _positive)
         if near >= far:
-            self._fail(self._find(clip, "far", sensor),
+            self.fail(self._find(clip, "far", sensor),
                        "far %g must be greater than near %g" % (far, near), sensor)
         plugin_rate = self._number(plugin, "updateRate", 0.0, plugin, _non_negative)
         sensor_rate = self._number(sensor, "update_rate", 0.0, sensor, _non_negative)
@@ -450,7 +447,7 @@ class _PluginReader:
             "distortionK1", "distortionK2", "distortionK3", "distortionT1", "distortionT2")]
         if any(distortion):
             self._warn("%s: lens distortion is not simulated; the images are undistorted"
-                       % self._describe(plugin))
+                       % self.describe(plugin))
         spec = CameraSpec(width=width, height=height, hfov=hfov,
                           rate=plugin_rate if plugin_rate > 0 else sensor_rate,
                           near=near, far=far, depth=depth,
@@ -461,7 +458,7 @@ class _PluginReader:
             cutoff = self._number(plugin, "pointCloudCutoff", 0.4, plugin, _non_negative)
             cutoff_max = self._number(plugin, "pointCloudCutoffMax", 5.0, plugin)
             if cutoff_max <= cutoff:
-                self._fail(self._find(plugin, "pointCloudCutoffMax", plugin),
+                self.fail(self._find(plugin, "pointCloudCutoffMax", plugin),
                            "pointCloudCutoffMax %g must be greater than pointCloudCutoff %g"
                            % (cutoff_max, cutoff), plugin)
             extra = dict(
@@ -491,10 +488,10 @@ class _PluginReader:
                 if filename in (LASER, GPU_LASER) and "rate" in child.tag.lower():
                     hint = " (a scan's rate is its sensor's <update_rate>)"
                 self._warn("%s: <%s> is not a parameter of %s; ignored, as in Gazebo%s"
-                           % (self._describe(plugin), child.tag, filename, hint))
+                           % (self.describe(plugin), child.tag, filename, hint))
 
     def _text(self, elem) -> str:
-        return (elem.text or "").strip()
+        return elem.value
 
     def _find(self, parent, tag, owner):
         """``parent``'s first <tag>, else ``parent`` (else ``owner``): where an error points."""
@@ -503,36 +500,23 @@ class _PluginReader:
 
     def _string(self, parent, tag, default: str) -> str:
         elem = parent.find(tag) if parent is not None else None
-        return default if elem is None else self._text(elem)
-
-    def _convert(self, parent, tag, default, owner, convert: Callable, what: str):
-        elem = parent.find(tag) if parent is not None else None
-        if elem is None:
-            return default
-        text = self._text(elem)
-        try:
-            return convert(text)
-        except ValueError:
-            self._fail(elem, "must be %s, got %r" % (what, text), owner)
+        return default if elem is None else elem.value
 
     def _number(self, parent, tag, default: float, owner, rule=None) -> float:
-        value = self._convert(parent, tag, default, owner, _finite, "a number")
+        value = self.number(parent, tag, default, owner)
         if rule is not None and not rule[0](value):
-            self._fail(self._find(parent, tag, owner), "must be %s, got %g" % (rule[1], value),
-                       owner)
+            self.fail(self._find(parent, tag, owner), "must be %s, got %g" % (rule[1], value),
+                      owner)
         return value
 
     def _integer(self, parent, tag, default: int, owner) -> int:
-        return self._convert(parent, tag, default, owner, _positive_integer,
-                             "a positive integer")
+        return self.integer(parent, tag, default, owner)
 
     def _bool(self, parent, tag, default: bool) -> bool:
-        return self._convert(parent, tag, default, parent, _boolean, "true or false")
+        return self.flag(parent, tag, default, parent)
 
-    def _pose(self, sensor) -> Pose6:
-        pose = self._convert(sensor, "pose", ZERO_POSE, sensor, _six_numbers,
-                             "six numbers (x y z roll pitch yaw)")
-        return tuple(pose)
+    def _pose(self, sensor) -> XyzRpy:
+        return tuple(self.xyz_rpy(sensor, "pose", ZERO_XYZ_RPY, sensor))
 
     def _link(self, parent, tag, default: str, owner) -> str:
         elem = parent.find(tag)
@@ -540,7 +524,7 @@ class _PluginReader:
             return default
         name = _strip_slash(self._text(elem))
         if name not in self.links:
-            self._fail(elem, "%r is not a link of this robot" % self._text(elem), owner)
+            self.fail(elem, "%r is not a link of this robot" % self._text(elem), owner)
         return name
 
     def _wheel_joint(self, plugin, tag, default: str) -> str:
@@ -549,35 +533,23 @@ class _PluginReader:
         wheels = [j for j, kind in self.joint_types.items() if kind in WHEEL_JOINT_TYPES]
         hint = "its continuous and revolute joints: %s" % (", ".join(wheels) or "none")
         if elem is None and name not in self.joint_types:
-            self._fail(plugin, "no <%s>, and the default joint %r is not in this robot (%s)"
+            self.fail(plugin, "no <%s>, and the default joint %r is not in this robot (%s)"
                        % (tag, name, hint))
         if name not in self.joint_types:
-            self._fail(elem, "joint %r is not in this robot (%s)" % (name, hint), plugin)
+            self.fail(elem, "joint %r is not in this robot (%s)" % (name, hint), plugin)
         if self.joint_types[name] not in WHEEL_JOINT_TYPES:
-            self._fail(self._find(plugin, tag, plugin), "joint %r is %s; a wheel joint must be "
+            self.fail(self._find(plugin, tag, plugin), "joint %r is %s; a wheel joint must be "
                        "continuous or revolute" % (name, self.joint_types[name]), plugin)
         return name
 
-    def _child(self, parent, tag, owner=None):
-        child = parent.find(tag)
-        if child is None:
-            self._fail(parent, "missing <%s>" % tag, owner)
-        return child
-
-    def _attr(self, elem, key) -> str:
-        value = elem.get(key, "").strip()
-        if not value:
-            self._fail(elem, "missing attribute %r" % key)
-        return value
-
     def _plugin_id(self, elem) -> Tuple[str, str]:
         """(name, library) of a <plugin>; the filename is required, the name may be empty."""
-        return elem.get("name", "").strip(), plugin_file(self._attr(elem, "filename"))
+        return elem.get("name", "").strip(), plugin_file(self.attr(elem, "filename"))
 
     # --- messages ----------------------------------------------------------------------------
 
-    def _describe(self, elem) -> str:
-        """How messages call a <plugin>, <sensor> or <gazebo> element."""
+    def describe(self, elem) -> str:
+        """How messages call a <plugin>, <sensor> or <gazebo> element (else "<tag>")."""
         name = elem.get("name", "").strip()
         if elem.tag == "plugin":
             filename = elem.get("filename", "").strip()
@@ -605,50 +577,12 @@ class _PluginReader:
 
     def _second(self, elem, what, first) -> None:
         self._warn("%s: a second %s is not simulated here (only one per robot: %r is); %s"
-                   % (self._describe(elem), what, first, NOT_SIMULATED))
+                   % (self.describe(elem), what, first, NOT_SIMULATED))
 
     def _warn(self, message: str) -> None:
         self.warnings.append(message)
 
-    def _fail(self, elem, problem: str, owner=None) -> NoReturn:
-        where = self._describe(elem)
-        if owner is not None and owner is not elem:
-            where = "%s <%s>" % (self._describe(owner), elem.tag)
-        raise UrdfError("%s:%s: %s: %s" % (self.path, self.lines.get(elem, "?"), where, problem))
-
-
 # --- value converters and rules (a rule: (predicate, what it must be)) -------------------------
-
-def _finite(text: str) -> float:
-    value = float(text)
-    if not math.isfinite(value):
-        raise ValueError(text)
-    return value
-
-
-def _positive_integer(text: str) -> int:
-    value = int(text)
-    if value <= 0:
-        raise ValueError(text)
-    return value
-
-
-def _boolean(text: str) -> bool:
-    """sdformat's bool: true/false/1/0, any case."""
-    word = text.lower()
-    if word in ("true", "1"):
-        return True
-    if word in ("false", "0"):
-        return False
-    raise ValueError(text)
-
-
-def _six_numbers(text: str) -> Pose6:
-    values = tuple(_finite(v) for v in text.split())
-    if len(values) != 6:
-        raise ValueError(text)
-    return values
-
 
 _positive = (lambda v: v > 0, "> 0")
 _non_negative = (lambda v: v >= 0, ">= 0")

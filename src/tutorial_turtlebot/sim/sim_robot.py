@@ -17,10 +17,11 @@ from .camera import CameraRenderer, validate_spec
 from .diff_drive import SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController, sanitize_command
 from .lidar import LASER_MODELS, LaserConfig, as_real_driver, ranges_from_distances, \
     ray_directions
-from .physics import GRAVITY, Pose, RobotBody, WorldPhysics
+from .kinematics import Pose
+from .physics import GRAVITY, RobotBody, WorldPhysics
 from .robot_plugins import CameraSensor, LaserSensor, RobotPlugins
 from .schedule import NS_PER_S, RateSchedule
-from .urdf_file import Pose as UrdfPose, RobotDescription
+from .urdf_file import RobotDescription
 from .wheel_odometry import WheelOdometry
 from ..errors import UserError
 
@@ -104,7 +105,7 @@ def _sensor_pose(body: RobotBody, link: str, pose6) -> np.ndarray:
     local = body.frame_in_footprint(link)
     if not any(pose6):
         return local
-    return local @ UrdfPose(tuple(pose6[:3]), tuple(pose6[3:])).matrix()
+    return local @ kinematics.transform_from_xyz_rpy(pose6[:3], pose6[3:])
 
 
 class SimRobot:

@@ -13,6 +13,7 @@ from typing import Dict, List, Optional, Tuple
 from ..errors import UserError
 from . import limits
 from .applied_forces import AppliedForces
+from .kinematics import quat_from_yaw
 from .physics import GRAVITY, WorldPhysics
 from .physics_properties import OdeConfig, PhysicsProperties, bullet_parameters
 from .robot_models import model_limits, turtlebot3_model_of
@@ -21,7 +22,7 @@ from .sim_robot import ImuState, OdomState, RobotOptions, SimRobot, normalize_na
 from .spawn_check import check_spawn, footprint_radius
 from .urdf_file import RobotDescription, read_urdf, urdf_path
 from .world_models import ModelRegistry, RequestError, model_of_urdf_body, models_of_world, \
-    robot_model_name, urdf_collision_names
+    robot_model_name
 from .bullet import pybullet
 from . import gui_window
 from .world_sdf import load_world, resolve_world
@@ -132,7 +133,7 @@ class Simulation:
             config.world if not config.world.endswith((".world", ".sdf")) else "", config.model)
         if description is not None:
             x, y, z, yaw = self.spawn
-            pose = ((x, y, z), tuple(pybullet.getQuaternionFromEuler((0.0, 0.0, yaw))))
+            pose = ((x, y, z), quat_from_yaw(yaw))
             try:
                 self.robot = self.add_robot(self.robot_name, "", description, pose, options)
             except RequestError as err:
@@ -179,11 +180,7 @@ class Simulation:
         except UserError as err:
             raise RequestError("SpawnModel: Failure - %s" % err) from None
         body = robot.body
-        try:   # Gazebo's names of its collisions (get_model_properties' geom_names)
-            with open(description.path) as f:
-                collisions = urdf_collision_names(f.read())
-        except (OSError, UnicodeDecodeError):
-            collisions = {}
+        collisions = description.collision_names()   # get_model_properties' geom_names
         model = model_of_urdf_body(name, body.robot, self.physics.client, "robot",
                                    reset_hook=body.reset_robot,
                                    remove_hook=lambda: self._forget_robot(name),

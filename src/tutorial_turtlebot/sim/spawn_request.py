@@ -3,45 +3,61 @@
 Three kinds, as Gazebo's spawn services take them:
 - SDF: ``<sdf>`` (or ``<gazebo>``) holding one ``<model>`` of primitive shapes (world_sdf's
   subset): it becomes a ``World`` of that one model, renamed and placed;
-- URDF: ``<robot>`` of links and joints with box, cylinder, sphere or mesh geometry and no
-  robot plugins: it becomes URDF text with the requested name and each mesh filename made the
+- URDF: ``<robot>`` of links and joints, read and checked by urdf_file as a robot's is (one
+  ``RobotDescription``, ``description``), with box, cylinder, sphere or mesh geometry and no
+  robot plugins: ``urdf`` is its text with the requested name and each mesh filename made the
   absolute path of its file (``package://``, ``file://``, or a path; a relative one from the
   working directory), which pybullet loads (meshes through urdf_meshes);
-- a robot: a URDF whose ``<gazebo>`` blocks hold plugins: its text as given (``robot``), which
-  the simulation builds with its plugins (``Simulation.add_robot``).
-Refused, with one line saying why (a RequestError whose text is the service's status message):
-text over ``MAX_XML_BYTES``, nesting deeper than world_sdf.MAX_XML_DEPTH, a DOCTYPE, malformed
-XML (with its line), an unknown root, a mesh file that cannot be found or is of an unknown kind,
-a bad mesh scale, any number beyond the limits of ``limits`` (a URDF's read by urdf_file, as a
-robot's are; an SDF's by world_sdf), an initial pose beyond them.
+- a robot: a URDF whose ``<gazebo>`` blocks hold plugins: ``robot`` is its text as given, and
+  the simulation builds it from ``description`` with its plugins (``Simulation.add_robot``).
+The text is parsed once (xml_reader) and checked once; everything downstream uses what that
+gives. Refused, with one line saying why (a RequestError whose text is the service's status
+message): text over ``MAX_XML_BYTES``, anything xml_reader refuses (malformed XML with its line,
+a DOCTYPE, nesting deeper than xml_reader.MAX_DEPTH), an unknown root, anything urdf_file or
+world_sdf refuses (a mesh file that cannot be found or is of an unknown kind, a bad mesh scale,
+any number beyond the limits of ``limits``), an initial pose beyond them.
 """
 import os
 from dataclasses import dataclass
 from typing import Optional
 from xml.etree import ElementTree
 
-from ..errors import UserError, WorldError
+from ..errors import UserError
 from . import reference_frames as rf
 from . import limits
-from .urdf_file import mesh_path, mesh_scale, read_urdf_text
+from . import xml_reader
+from .kinematics import xyz_rpy_from_pose
+from .urdf_file import RobotDescription, read_urdf_element
+from .urdf_meshes import absolute_meshes, mesh_paths
 from .world_bullet import MOVABLE_KINDS
 from .world_models import RequestError
-from .world_sdf import World, load_model_xml, parse_xml
+from .world_sdf import World, load_model_xml
+from .xml_reader import Element
 
 MAX_XML_BYTES = 1_000_000
-URDF_GEOMETRY = ("box", "cylinder", "sphere", "mesh")
 PREFIX = "SpawnModel: Failure - "
 
 
 @dataclass
 class SpawnRequest:
-    """A parsed spawn: exactly one of ``world`` (SDF), ``urdf`` (URDF text of a plain model)
-    and ``robot`` (URDF text of a robot with plugins) is set."""
+    """A parsed spawn: ``world`` (SDF) or ``description`` (URDF, read once) is set; a URDF is
+    either a plain model (``urdf``: the text pybullet loads) or a robot with plugins
+    (``robot``: its text as given)."""
 
     name: str
     world: Optional[World] = None
     urdf: Optional[str] = None
     robot: Optional[str] = None
+    description: Optional[RobotDescription] = None
+
+    def plain_urdf(self) -> Element:
+        """A copy of a plain URDF's ``<robot>`` as ``urdf`` writes it: renamed, without
+        ``<gazebo>`` blocks, each mesh filename the absolute path of its file."""
+        robot = absolute_meshes(self.description.root, mesh_paths(self.description))
+        robot.set("name", self.name)
+        for gazebo in robot.findall("gazebo"):
+            robot.remove(gazebo)
+        return robot
 
 
 def _check_size(xml: str) -> None:
@@ -55,35 +71,23 @@ def _check_size(xml: str) -> None:
 def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf") -> SpawnRequest:
     """Check and parse a spawn of ``xml`` as model ``name`` at world ``pose``. ``kind`` is the
     service called: "sdf" takes SDF or URDF (as Gazebo's spawn_sdf_model does), "urdf" only
-    URDF."""
+    URDF. A robot's errors name it "model_xml of <name>", others "model_xml"."""
     _check_size(xml)
     try:
-        root = parse_xml(xml, "model_xml")
-    except WorldError as err:
+        root = xml_reader.parse(xml, "model_xml")
+        if root.tag == "robot":
+            return _urdf_request(name, xml, root)
+    except UserError as err:
         raise RequestError(PREFIX + str(err)) from None
-    if root.tag == "robot":
-        try:
-            robot = ElementTree.fromstring(xml)
-        except ElementTree.ParseError as err:
-            raise RequestError(PREFIX + "model_xml: malformed XML: %s" % err) from None
-        if any(gazebo.find(".//plugin") is not None for gazebo in robot.iter("gazebo")):
-            return SpawnRequest(name, robot=xml)
-        urdf = _urdf(name, robot)
-        try:   # every number checked as a robot's are (limits), before pybullet sees it
-            read_urdf_text(xml, "model_xml")
-        except UserError as err:
-            raise RequestError(PREFIX + str(err)) from None
-        return SpawnRequest(name, urdf=urdf)
     if kind == "urdf":
         raise RequestError(PREFIX + "spawn_urdf_model needs a <robot> root element, got <%s>"
                            % root.tag)
     if root.tag not in ("sdf", "gazebo"):
         raise RequestError(PREFIX + "model_xml: the root element is <%s>: expected <sdf> or "
                                     "<robot>" % root.tag)
-    roll, pitch, yaw = rf.rpy_from_quat(pose[1])
     try:
-        world = load_model_xml(xml, "model_xml", name, tuple(pose[0]) + (roll, pitch, yaw))
-    except WorldError as err:
+        world = load_model_xml(root, "model_xml", name, xyz_rpy_from_pose(pose))
+    except UserError as err:
         raise RequestError(PREFIX + str(err)) from None
     for shape in world.shapes:
         if not shape.static and shape.kind not in MOVABLE_KINDS:
@@ -92,56 +96,17 @@ def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "s
     return SpawnRequest(name, world=world)
 
 
-def _urdf(name: str, robot: ElementTree.Element) -> str:
-    """The URDF text of ``robot`` renamed ``name``; RequestError for what this simulator
-    cannot load."""
-    links = robot.findall("link")
-    if not links:
-        raise RequestError(PREFIX + "the URDF <robot> has no <link>")
-    names = [link.get("name", "") for link in links]
-    if "" in names or len(set(names)) != len(names):
-        raise RequestError(PREFIX + "every URDF <link> needs a unique name")
-    children = set()
-    for joint in robot.findall("joint"):
-        parent, child = joint.find("parent"), joint.find("child")
-        for end in (parent, child):
-            if end is None or end.get("link") not in names:
-                raise RequestError(PREFIX + "URDF joint %r: parent and child must name links"
-                                   % joint.get("name", ""))
-        children.add(child.get("link"))
-    roots = [n for n in names if n not in children]
-    if len(roots) != 1:
-        raise RequestError(PREFIX + "the URDF must have exactly one root link, it has %d"
-                           % len(roots))
-    for link in links:
-        for element in link:
-            geometry = element.find("geometry") if element.tag in ("collision", "visual") else None
-            for shape in (geometry if geometry is not None else ()):
-                if shape.tag not in URDF_GEOMETRY:
-                    raise RequestError(PREFIX + "URDF link %r: <%s> geometry is not supported "
-                                                "(only %s)" % (link.get("name"), shape.tag,
-                                                               ", ".join(URDF_GEOMETRY)))
-                if shape.tag == "mesh":
-                    _absolute_mesh(link.get("name"), shape)
-    robot.set("name", name)
-    for gazebo in robot.findall("gazebo"):
-        robot.remove(gazebo)
-    return ElementTree.tostring(robot, encoding="unicode")
-
-
-def _absolute_mesh(link: str, mesh: ElementTree.Element) -> None:
-    """Check a plain URDF's ``<mesh>`` and make its filename the file's absolute path."""
-    where = "URDF link %r <mesh>" % link
-    if mesh_scale(mesh.get("scale")) is None:
-        raise RequestError(PREFIX + "%s: scale=%r is not three non-zero numbers"
-                           % (where, mesh.get("scale")))
-    uri = mesh.get("filename", "").strip()
-    if not uri:
-        raise RequestError(PREFIX + "%s: missing attribute 'filename'" % where)
-    try:
-        mesh.set("filename", mesh_path(uri, os.getcwd()))
-    except UserError as err:
-        raise RequestError(PREFIX + "%s: %s" % (where, err)) from None
+def _urdf_request(name: str, xml: str, root: Element) -> SpawnRequest:
+    """The request of a URDF (``root``: its parsed ``<robot>``), read and checked by urdf_file,
+    relative mesh filenames from the working directory; UserError if it cannot be."""
+    is_robot = any(gazebo.find(".//plugin") is not None for gazebo in root.iter("gazebo"))
+    source = "model_xml of %s" % name if is_robot else "model_xml"
+    description = read_urdf_element(root, source, os.getcwd())
+    if is_robot:
+        return SpawnRequest(name, robot=xml, description=description)
+    request = SpawnRequest(name, description=description)
+    request.urdf = ElementTree.tostring(request.plain_urdf(), encoding="unicode")
+    return request
 
 
 def placed(pose: rf.Pose, frame: Optional[rf.Pose]) -> rf.Pose:

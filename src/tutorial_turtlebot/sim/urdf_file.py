@@ -1,56 +1,52 @@
 """Read a URDF file into plain dataclasses, with neither ROS nor pybullet.
 
-Units: metres, kilograms, kg*m^2, radians. A ``Pose`` is a child frame's origin in its parent
+Units: metres, kilograms, kg*m^2, radians. An ``Origin`` is a child frame's origin in its parent
 frame: ``xyz`` then ``rpy`` as URDF defines it (fixed axes: R = Rz(yaw) * Ry(pitch) * Rx(roll)).
-Every problem with the file raises ``UrdfError`` whose message is one line:
-``<file>:<line>: <element at fault>: <what is wrong>``. The ``<gazebo>`` blocks (plugins and
-sensors) are read by ``robot_plugins.read_plugins`` into ``RobotDescription.plugins``.
+Every problem with the file raises ``UrdfError`` whose message is xml_reader's one line:
+``<file>:<line>: <element at fault>: <what is wrong>``; a DOCTYPE is refused, as in SDF. The
+``<gazebo>`` blocks (plugins and sensors) are read by ``robot_plugins.read_plugins`` into
+``RobotDescription.plugins``.
 A ``<mesh filename>`` (``package://``, ``file://``, absolute, or relative to the URDF's folder;
 for a URDF given as text, to the working directory) is found and checked while reading: it must
 name an existing STL, Collada (.dae) or OBJ file; ``Geometry.filename`` is then its absolute
 path and ``Geometry.uri`` the filename as written. The file's triangles are read later, by
 ``mesh_file.load_mesh``, when a body is built.
 """
-import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, NoReturn, Optional, Tuple
-from xml.etree import ElementTree
-from xml.parsers import expat
+from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
 from ..errors import UrdfError, UserError
 from . import limits
+from . import xml_reader
 from .asset_uri import resolve_uri
+from .kinematics import Vector3, transform_from_xyz_rpy
 from .mesh_file import load_mesh
 from .package_data import data_dir
 from .robot_models import get_model
 from .robot_plugins import RobotPlugins, read_plugins
+from .xml_reader import Element, XmlReader
 
 URDF_DIR = Path(data_dir("urdf"))
 NAMED = ("robot", "link", "joint", "material")  # elements that errors call by name
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic", "floating", "planar")
-Vector3 = Tuple[float, float, float]
+LUMP = "_fixed_joint_lump__"
 
 
 @dataclass(frozen=True)
-class Pose:
-    """Origin of a child frame in its parent frame: xyz (m) and fixed-axis roll, pitch, yaw (rad)."""
+class Origin:
+    """A URDF ``<origin>``: a child frame in its parent frame as written, xyz (m) and
+    fixed-axis roll, pitch, yaw (rad); kinematics converts it."""
 
     xyz: Vector3 = (0.0, 0.0, 0.0)
     rpy: Vector3 = (0.0, 0.0, 0.0)
 
     def matrix(self) -> np.ndarray:
         """4x4 homogeneous transform T with p_parent = T @ p_child."""
-        (cr, cp, cy), (sr, sp, sy) = np.cos(self.rpy), np.sin(self.rpy)
-        t = np.eye(4)
-        t[:3, :3] = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]]
-        t[:3, 3] = self.xyz
-        return t
+        return transform_from_xyz_rpy(self.xyz, self.rpy)
 
 
 @dataclass(frozen=True)
@@ -67,17 +63,19 @@ class Geometry:
 
 @dataclass(frozen=True)
 class Collision:
-    """A collision shape placed at ``origin`` in its link frame."""
+    """A collision shape placed at ``origin`` in its link frame; ``name``: its name attribute
+    ("" if it has none)."""
 
-    origin: Pose
+    origin: Origin
     geometry: Geometry
+    name: str = ""
 
 
 @dataclass(frozen=True)
 class Visual:
     """A visual shape placed at ``origin`` in its link frame; ``rgba`` in 0..1, None if uncoloured."""
 
-    origin: Pose
+    origin: Origin
     geometry: Geometry
     material: str = ""
     rgba: Optional[Tuple[float, float, float, float]] = None
@@ -89,7 +87,7 @@ class Inertial:
 
     mass: float
     inertia: Tuple[float, float, float, float, float, float]
-    origin: Pose = Pose()
+    origin: Origin = Origin()
 
 
 @dataclass(frozen=True)
@@ -116,7 +114,7 @@ class Joint:
     type: str
     parent: str
     child: str
-    origin: Pose = Pose()
+    origin: Origin = Origin()
     axis: Vector3 = (1.0, 0.0, 0.0)
 
 
@@ -125,7 +123,9 @@ class RobotDescription:
     """A whole robot: links and joints by name, in file order. The tree is checked on reading:
     every joint names known links, each link has at most one parent, there is one root.
     ``plugins``: what its ``<gazebo>`` blocks declare. ``path``: the file, or for a URDF read
-    from text the name its errors give (e.g. "spawn_urdf_model tb3_3")."""
+    from text the name its errors give (e.g. "spawn_urdf_model tb3_3"). ``root``: the parsed
+    ``<robot>`` element it was read from (xml_reader), for whoever writes the URDF out again;
+    copy it before changing it."""
 
     name: str
     path: str
@@ -133,6 +133,7 @@ class RobotDescription:
     joints: Dict[str, Joint]
     _parent_joint: Dict[str, Joint] = field(init=False, repr=False, compare=False)
     plugins: RobotPlugins = RobotPlugins()
+    root: Optional[Element] = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "_parent_joint", {j.child: j for j in self.joints.values()})
@@ -170,6 +171,43 @@ class RobotDescription:
         if link not in self.links:
             raise KeyError("no link %r in %s" % (link, self.path))
 
+    def collision_names(self) -> Dict[str, List[str]]:
+        """Gazebo's names of the collisions (get_model_properties' geom_names), by the link
+        that holds them once fixed joints are lumped, as gazebo_ros's URDF to SDF conversion
+        (sdformat's parser_urdf) names them: a link takes its own collisions, then those of
+        its fixed-jointed children (depth first, children in joint-name order, as urdfdom
+        keeps them); the i-th (from 0) is called ``<name>_collision`` plus ``_<i>`` when
+        i > 0, where <name> is the collision's own name attribute or else the link it came
+        from, and a name that does not start with the holding link's name is prefixed
+        ``<link>_fixed_joint_lump__``. A TurtleBot3 Burger: base_footprint holds
+        ``base_footprint_fixed_joint_lump__base_link_collision``,
+        ``..._caster_back_link_collision_1`` and ``..._base_scan_collision_2``; each wheel
+        link ``wheel_left_link_collision``."""
+        children: Dict[str, List[Tuple[str, str, str]]] = {}
+        for joint in self.joints.values():
+            children.setdefault(joint.parent, []).append((joint.name, joint.type, joint.child))
+        for joints in children.values():
+            joints.sort()
+
+        def lumped(link: str) -> List[str]:
+            names = [c.name or link for c in self.links[link].collisions]
+            for _, kind, child in children.get(link, ()):
+                if kind == "fixed":
+                    names += lumped(child)
+            return names
+
+        out: Dict[str, List[str]] = {}
+        for link in self.links:
+            parent = self._parent_joint.get(link)
+            if parent is not None and parent.type == "fixed":
+                continue      # lumped into the link above
+            names = []
+            for i, base in enumerate(lumped(link)):
+                geom = base + "_collision" + ("_%d" % i if i else "")
+                names.append(geom if geom.startswith(link) else link + LUMP + geom)
+            out[link] = names
+        return out
+
 
 def urdf_path(model_name: str, with_camera: bool = False) -> str:
     """Path of the URDF shipped for a TurtleBot3 model. ``with_camera`` on a model that carries no
@@ -184,7 +222,8 @@ def read_urdf(path) -> RobotDescription:
     """Read and check the URDF file at ``path``; any problem raises a one-line UrdfError.
     Relative mesh filenames are taken from the file's folder."""
     path = str(path)
-    return _Reader(path, base_dir=os.path.dirname(os.path.abspath(path))).read()
+    root = xml_reader.parse_file(path, "URDF file", UrdfError)
+    return read_urdf_element(root, path, os.path.dirname(os.path.abspath(path)))
 
 
 def read_urdf_text(xml: str, source: str, base_dir: Optional[str] = None) -> RobotDescription:
@@ -193,7 +232,15 @@ def read_urdf_text(xml: str, source: str, base_dir: Optional[str] = None) -> Rob
     Relative mesh filenames are taken from ``base_dir`` (default: the working directory)."""
     if not isinstance(xml, (str, bytes)):
         raise UrdfError("%s: the URDF must be text, not %s" % (source, type(xml).__name__))
-    return _Reader(source, xml, base_dir or os.getcwd()).read()
+    return read_urdf_element(xml_reader.parse(xml, source, UrdfError), source, base_dir)
+
+
+def read_urdf_element(root: Element, source: str,
+                      base_dir: Optional[str] = None) -> RobotDescription:
+    """Read and check a URDF already parsed by xml_reader (its ``<robot>`` element); ``source``
+    names it in errors and is the result's ``path``; relative mesh filenames are taken from
+    ``base_dir`` (default: the working directory)."""
+    return _Reader(source, base_dir or os.getcwd()).read(root)
 
 
 def mesh_path(uri: str, base_dir: str) -> str:
@@ -210,28 +257,23 @@ def mesh_scale(text: Optional[str]) -> Optional[Tuple[float, float, float]]:
     when absent); None if it is not that (a negative factor mirrors the mesh, as in Gazebo)."""
     if text is None:
         return (1.0, 1.0, 1.0)
-    try:
-        values = tuple(float(v) for v in text.split())
-    except ValueError:
-        return None
-    if len(values) != 3 or limits.scale_problem(values):
+    values = xml_reader.numbers(text, 3, finite=False)
+    if values is None or limits.scale_problem(values):
         return None
     return values
 
 
-class _Reader:
-    """One pass over one file (or text); knows each element's line for the error messages."""
+class _Reader(XmlReader):
+    """One pass over one parsed URDF; every error names the file and the element's line."""
 
-    def __init__(self, path: str, text=None, base_dir: str = ""):
+    def __init__(self, path: str, base_dir: str = ""):
+        super().__init__(path, UrdfError)
         self.path = path
-        self.text = text
         self.base_dir = base_dir
-        self.lines: Dict[ElementTree.Element, int] = {}
 
-    def read(self) -> RobotDescription:
-        root = self._parse_xml()
+    def read(self, root: Element) -> RobotDescription:
         if root.tag != "robot":
-            self._fail(root, "the root element must be <robot>")
+            self.fail(root, "the root element must be <robot>")
         name = self._name(root)
         materials = {}
         for elem in root.findall("material"):
@@ -242,58 +284,34 @@ class _Reader:
         for elem in root.findall("link"):
             link = self._link(elem, materials)
             if link.name in links:
-                self._fail(elem, "defined twice")
+                self.fail(elem, "defined twice")
             links[link.name] = link
         if not links:
-            self._fail(root, "no <link> in robot %r" % name)
+            self.fail(root, "no <link> in robot %r" % name)
         joints: Dict[str, Joint] = {}
-        parent_of: Dict[str, ElementTree.Element] = {}
+        parent_of: Dict[str, Element] = {}
         for elem in root.findall("joint"):
             joint = self._joint(elem, links)
             if joint.name in joints:
-                self._fail(elem, "defined twice")
+                self.fail(elem, "defined twice")
             if joint.child in parent_of:
                 first = parent_of[joint.child]
-                self._fail(elem, "link %r already has a parent, joint %r (line %s)"
-                           % (joint.child, first.get("name"), self.lines[first]))
+                self.fail(elem, "link %r already has a parent, joint %r (line %s)"
+                           % (joint.child, first.get("name"), first.line))
             joints[joint.name] = joint
             parent_of[joint.child] = elem
         self._check_tree(root, links, joints)
         plugins = read_plugins(root, links, {j.name: j.type for j in joints.values()},
-                               self.path, self.lines)
-        return RobotDescription(name, self.path, links, joints, plugins)
-
-    def _parse_xml(self) -> ElementTree.Element:
-        builder = ElementTree.TreeBuilder()
-        parser = expat.ParserCreate()
-
-        def start(tag, attrib):
-            self.lines[builder.start(tag, attrib)] = parser.CurrentLineNumber
-
-        parser.StartElementHandler = start
-        parser.EndElementHandler = builder.end
-        parser.CharacterDataHandler = builder.data  # the <gazebo> blocks' values are text
-        try:
-            if self.text is not None:
-                parser.Parse(self.text, True)
-            else:
-                with open(self.path, "rb") as stream:
-                    parser.ParseFile(stream)
-        except OSError as err:
-            raise UrdfError("%s: cannot read URDF file: %s" % (self.path, err.strerror)) from None
-        except expat.ExpatError as err:
-            raise UrdfError("%s:%d: malformed XML: %s (column %d)"
-                            % (self.path, err.lineno, expat.ErrorString(err.code),
-                               err.offset + 1)) from None
-        return builder.close()
+                               self.path)
+        return RobotDescription(name, self.path, links, joints, plugins, root)
 
     def _check_tree(self, root, links, joints) -> None:
         children = {j.child for j in joints.values()}
         roots = [name for name in links if name not in children]
         if not roots:
-            self._fail(root, "no root link: every link is the child of a joint (a loop)")
+            self.fail(root, "no root link: every link is the child of a joint (a loop)")
         if len(roots) > 1:
-            self._fail(root, "%d root links (%s): links must form one tree joined by joints"
+            self.fail(root, "%d root links (%s): links must form one tree joined by joints"
                        % (len(roots), ", ".join(roots)))
         reached, todo = {roots[0]}, [roots[0]]
         while todo:
@@ -304,7 +322,7 @@ class _Reader:
                     todo.append(joint.child)
         if len(reached) < len(links):
             lost = [name for name in links if name not in reached]
-            self._fail(root, "links %s form a loop cut off from root link %r"
+            self.fail(root, "links %s form a loop cut off from root link %r"
                        % (", ".join(lost), roots[0]))
 
     def _link(self, elem, materials) -> Link:
@@ -313,20 +331,21 @@ class _Reader:
         inertial = None
         inertial_elem = elem.find("inertial")
         if inertial_elem is not None:
-            mass_elem = self._child(inertial_elem, "mass", owner)
+            mass_elem = self.child(inertial_elem, "mass", owner)
             mass = self._numbers(mass_elem, "value", 1, owner, finite=False)[0]
             problem = limits.mass_problem(mass, allow_zero=True)   # 0: a bare frame
             if problem:
-                self._fail(mass_elem, problem, owner)
-            inertia_elem = self._child(inertial_elem, "inertia", owner)
+                self.fail(mass_elem, problem, owner)
+            inertia_elem = self.child(inertial_elem, "inertia", owner)
             inertia = tuple(self._numbers(inertia_elem, key, 1, owner, finite=False)[0]
                             for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
             ixx, ixy, ixz, iyy, iyz, izz = inertia
             problem = limits.inertia_problem((ixx, iyy, izz), (ixy, ixz, iyz), allow_zero=True)
             if problem:
-                self._fail(inertia_elem, problem, owner)
+                self.fail(inertia_elem, problem, owner)
             inertial = Inertial(mass, inertia, self._origin(inertial_elem, owner))
-        collisions = tuple(Collision(self._origin(c, owner), self._geometry(c, owner))
+        collisions = tuple(Collision(self._origin(c, owner), self._geometry(c, owner),
+                                     c.get("name") or "")
                            for c in elem.findall("collision"))
         visuals = tuple(self._visual(v, owner, materials) for v in elem.findall("visual"))
         return Link(name, inertial, collisions, visuals)
@@ -340,7 +359,7 @@ class _Reader:
         rgba = self._rgba(material, owner)
         if rgba is None and name:
             if name not in materials:
-                self._fail(material, "has no <color> and no robot-level definition", owner)
+                self.fail(material, "has no <color> and no robot-level definition", owner)
             rgba = materials[name]
         return Visual(visual.origin, visual.geometry, name, rgba)
 
@@ -350,14 +369,14 @@ class _Reader:
             return None
         rgba = self._numbers(color, "rgba", 4, owner)
         if not all(0.0 <= c <= 1.0 for c in rgba):
-            self._fail(color, "rgba %r must be four numbers from 0 to 1" % color.get("rgba"), owner)
+            self.fail(color, "rgba %r must be four numbers from 0 to 1" % color.get("rgba"), owner)
         return rgba
 
     def _geometry(self, elem, owner) -> Geometry:
-        geometry = self._child(elem, "geometry", owner)
+        geometry = self.child(elem, "geometry", owner)
         shapes = list(geometry)
         if len(shapes) != 1:
-            self._fail(geometry, "needs exactly one of <box>, <cylinder>, <sphere>, <mesh>", owner)
+            self.fail(geometry, "needs exactly one of <box>, <cylinder>, <sphere>, <mesh>", owner)
         shape = shapes[0]
         if shape.tag in ("box", "cylinder", "sphere"):
             keys = {"box": ("size",), "cylinder": ("radius", "length"),
@@ -368,40 +387,40 @@ class _Reader:
                                        finite=False)
                 problem = limits.size_problem(key, values)
                 if problem:
-                    self._fail(shape, problem, owner)
+                    self.fail(shape, problem, owner)
                 size += values
         elif shape.tag == "mesh":
-            uri = self._attr(shape, "filename", owner)
+            uri = self.attr(shape, "filename", owner)
             scale = mesh_scale(shape.get("scale"))
             if scale is None:
-                self._fail(shape, "scale=%r is not three non-zero numbers (x y z factors)"
+                self.fail(shape, "scale=%r is not three non-zero numbers (x y z factors)"
                            % shape.get("scale"), owner)
             try:
                 path = mesh_path(uri, self.base_dir)
             except UserError as err:
-                self._fail(shape, str(err), owner)
+                self.fail(shape, str(err), owner)
             return Geometry("mesh", scale, path, uri)
         else:
-            self._fail(shape, "unknown shape: use <box>, <cylinder>, <sphere> or <mesh>", owner)
+            self.fail(shape, "unknown shape: use <box>, <cylinder>, <sphere> or <mesh>", owner)
         return Geometry(shape.tag, size)
 
     def _joint(self, elem, links) -> Joint:
         name = self._name(elem)
         owner = "joint %r" % name
-        kind = self._attr(elem, "type", owner)
+        kind = self.attr(elem, "type", owner)
         if kind not in JOINT_TYPES:
-            self._fail(elem, "type %r is not one of %s" % (kind, ", ".join(JOINT_TYPES)), owner)
+            self.fail(elem, "type %r is not one of %s" % (kind, ", ".join(JOINT_TYPES)), owner)
         ends = []
         for tag in ("parent", "child"):
-            end = self._child(elem, tag, owner)
-            link = self._attr(end, "link", owner)
+            end = self.child(elem, tag, owner)
+            link = self.attr(end, "link", owner)
             if link not in links:
-                self._fail(end, "link %r is not defined in this file" % link, owner)
+                self.fail(end, "link %r is not defined in this file" % link, owner)
             ends.append(link)
         if ends[0] == ends[1]:
-            self._fail(elem, "parent and child are the same link %r" % ends[0], owner)
+            self.fail(elem, "parent and child are the same link %r" % ends[0], owner)
         if kind in ("revolute", "prismatic"):
-            self._child(elem, "limit", owner)
+            self.child(elem, "limit", owner)
         limit = elem.find("limit")
         for key, low, high, unit in (
                 ("lower", -limits.MAX_JOINT_POSITION, limits.MAX_JOINT_POSITION, "rad or m"),
@@ -411,63 +430,39 @@ class _Reader:
             if limit is not None and key in limit.attrib:
                 problem = limits.outside(key, self._number(limit, key, owner), low, high, unit)
                 if problem:
-                    self._fail(limit, problem, owner)
+                    self.fail(limit, problem, owner)
         axis = (1.0, 0.0, 0.0)
         axis_elem = elem.find("axis")
         if axis_elem is not None:
             axis = self._numbers(axis_elem, "xyz", 3, owner)
             if not any(axis):
-                self._fail(axis_elem, "axis must not be zero", owner)
+                self.fail(axis_elem, "axis must not be zero", owner)
             problem = limits.symmetric("xyz", axis, limits.MAX_POSITION, "")
             if problem:   # a direction: its length must not overflow
-                self._fail(axis_elem, problem, owner)
+                self.fail(axis_elem, problem, owner)
         return Joint(name, kind, ends[0], ends[1], self._origin(elem, owner), axis)
 
-    def _origin(self, elem, owner) -> Pose:
+    def _origin(self, elem, owner) -> Origin:
         origin = elem.find("origin")
         if origin is None:
-            return Pose()
+            return Origin()
         xyz = self._numbers(origin, "xyz", 3, owner) if "xyz" in origin.attrib else (0.0,) * 3
         rpy = self._numbers(origin, "rpy", 3, owner) if "rpy" in origin.attrib else (0.0,) * 3
         problem = limits.position_problem("xyz", xyz) or limits.angles_problem("rpy", rpy)
         if problem:
-            self._fail(origin, problem, owner)
-        return Pose(xyz, rpy)
+            self.fail(origin, problem, owner)
+        return Origin(xyz, rpy)
 
     def _numbers(self, elem, key, count, owner, finite: bool = True) -> tuple:
-        """``count`` numbers of attribute ``key``; ``finite`` False lets NaN and inf through
-        (to a range check of limits, which names the limit)."""
-        text = self._attr(elem, key, owner)
-        try:
-            values = tuple(float(v) for v in text.split())
-        except ValueError:
-            values = ()
-        if len(values) != count or (finite and not all(map(math.isfinite, values))):
-            self._fail(elem, "%s=%r is not %s" % (key, text, "a number" if count == 1
-                                                   else "%d numbers" % count), owner)
-        return values
+        return self.attr_floats(elem, key, count, owner, finite)
 
     def _number(self, elem, key, owner) -> float:
-        return self._numbers(elem, key, 1, owner)[0]
+        return self.attr_floats(elem, key, 1, owner)[0]
 
     def _name(self, elem) -> str:
-        return self._attr(elem, "name", None)
+        return self.attr(elem, "name")
 
-    def _attr(self, elem, key, owner) -> str:
-        value = elem.get(key, "").strip()
-        if not value:
-            self._fail(elem, "missing attribute %r" % key, owner)
-        return value
-
-    def _child(self, elem, tag, owner) -> ElementTree.Element:
-        child = elem.find(tag)
-        if child is None:
-            self._fail(elem, "missing <%s>" % tag, owner)
-        return child
-
-    def _fail(self, elem, problem, owner=None) -> NoReturn:
+    def describe(self, elem) -> str:
+        """``link 'a'`` for a named robot, link, joint or material, else ``<tag>``."""
         name = elem.get("name")
-        where = "%s %r" % (elem.tag, name) if name and elem.tag in NAMED else "<%s>" % elem.tag
-        if owner and owner != where:
-            where = "%s %s" % (owner, where)
-        raise UrdfError("%s:%s: %s: %s" % (self.path, self.lines.get(elem, "?"), where, problem))
+        return "%s %r" % (elem.tag, name) if name and elem.tag in NAMED else "<%s>" % elem.tag

@@ -201,28 +201,24 @@ def urdf_text(robot: ElementTree.Element) -> str:
     return ElementTree.tostring(robot, encoding="unicode")
 
 
-def bullet_urdf_text(xml: str, base_dir: str) -> str:
-    """The URDF text ``xml`` with its meshes rewritten by ``bullet_meshes``, one element a
-    line (``urdf_text``)."""
-    robot = ElementTree.fromstring(xml)
+def bullet_urdf_text(robot: ElementTree.Element, base_dir: str) -> str:
+    """The URDF text of a copy of the parsed ``<robot>`` with its meshes rewritten by
+    ``bullet_meshes``, one element a line (``urdf_text``)."""
+    robot = copy.deepcopy(robot)
     if next(robot.iter("mesh"), None) is not None:
         bullet_meshes(robot, base_dir)
     return urdf_text(robot)
 
 
-def absolute_meshes(xml: str, base_dir: str, known: Optional[Dict[str, str]] = None) -> str:
-    """The URDF text ``xml`` with every ``<mesh filename>`` made an absolute path (relative
-    ones from ``base_dir``; ``known``: filename -> path already found), for a copy written
-    elsewhere; ``xml`` itself if it has no mesh."""
-    robot = ElementTree.fromstring(xml)
-    meshes = list(robot.iter("mesh"))
-    if not meshes:
-        return xml
-    known = known or {}
-    for mesh in meshes:
+def absolute_meshes(robot: ElementTree.Element, known: Dict[str, str]) -> ElementTree.Element:
+    """A copy of the parsed URDF ``<robot>`` whose every ``<mesh filename>`` is the absolute
+    path ``known`` gives it (``mesh_paths`` of its description), for a copy written
+    elsewhere."""
+    robot = copy.deepcopy(robot)
+    for mesh in robot.iter("mesh"):
         uri = mesh.get("filename", "").strip()
-        mesh.set("filename", known.get(uri) or resolve_uri(uri, base_dir))
-    return ElementTree.tostring(robot, encoding="unicode")
+        mesh.set("filename", known.get(uri, uri))
+    return robot
 
 
 def mesh_paths(description) -> Dict[str, str]:

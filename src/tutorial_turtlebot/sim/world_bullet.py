@@ -21,7 +21,7 @@ import numpy as np
 
 from .bullet import pybullet
 from ..errors import WorldError
-from .kinematics import quat_from_matrix, quat_from_rpy
+from .kinematics import pose_from_xyz_rpy, quat_from_matrix
 from .mesh_file import Mesh, MeshPart, load_mesh, write_obj_parts
 from .world_sdf import Inertial, Link, Shape, World
 
@@ -83,14 +83,14 @@ def link_com_pose(link: Link):
     """World pose ((x, y, z), (qx, qy, qz, qw)) of a movable link's body frame: the centre of
     mass, its axes along the principal axes of inertia."""
     com_in_link = _com_frame(link.inertial)
-    return pybullet.multiplyTransforms(*_pose7(link.pose), *com_in_link)
+    return pybullet.multiplyTransforms(*pose_from_xyz_rpy(link.pose), *com_in_link)
 
 
 def _com_frame(inertial: Inertial):
     """(position, quaternion) of the principal-axes centre-of-mass frame in the link frame, and
     nothing else: see ``_principal``."""
     rotation, _ = _principal(inertial)
-    pos, orn = _pose7(inertial.pose)
+    pos, orn = pose_from_xyz_rpy(inertial.pose)
     return pybullet.multiplyTransforms(pos, orn, (0, 0, 0), rotation)
 
 
@@ -104,11 +104,6 @@ def _principal(inertial: Inertial):
     if np.linalg.det(axes) < 0:
         axes[:, 2] = -axes[:, 2]
     return quat_from_matrix(axes), tuple(float(m) for m in moments)
-
-
-def _pose7(pose: Sequence[float]):
-    """An SDF pose (x, y, z, roll, pitch, yaw) as ((x, y, z), quaternion)."""
-    return tuple(pose[:3]), quat_from_rpy(*pose[3:])
 
 
 def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> int:
@@ -170,7 +165,7 @@ def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: 
             args["rgbaColors"].append(rgba)
 
     for s in shapes:
-        pose = pybullet.multiplyTransforms(*to_com, *_pose7(s.pose))
+        pose = pybullet.multiplyTransforms(*to_com, *pose_from_xyz_rpy(s.pose))
         if s.kind == "mesh":
             mesh = load_mesh(s.mesh, s.size)
             if not visual:   # one file of every triangle: pybullet collides with its hull
@@ -201,10 +196,10 @@ def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
     """One fixed body for ``shape``: collision and visual geometry, or visual only."""
     pieces = _pieces(shape, cid, mesh_dir, collide)
     (base_col, base_vis), links = pieces[0], pieces[1:]
-    orientation = quat_from_rpy(*shape.pose[3:])
+    position, orientation = pose_from_xyz_rpy(shape.pose)
     body = pybullet.createMultiBody(
         baseMass=0.0, baseCollisionShapeIndex=base_col, baseVisualShapeIndex=base_vis,
-        basePosition=shape.pose[:3], baseOrientation=orientation,
+        basePosition=position, baseOrientation=orientation,
         linkMasses=[0.0] * len(links),
         linkCollisionShapeIndices=[c for c, _ in links],
         linkVisualShapeIndices=[v for _, v in links],
@@ -480,7 +475,7 @@ def place_world_bodies(world: World, bodies: Dict[str, int], cid: int) -> None:
         if body is None:    # a static visual drawn by its collision twin's body
             continue
         if shape.static:
-            pos, orn = _pose7(shape.pose)
+            pos, orn = pose_from_xyz_rpy(shape.pose)
         else:
             pos, orn = link_com_pose(links[shape.link])
         pybullet.resetBasePositionAndOrientation(body, pos, orn, physicsClientId=cid)

@@ -19,18 +19,18 @@ import numpy as np
 from ..errors import UserError
 from .bullet import pybullet, quiet_output
 from .applied_forces import EffortJob, WrenchJob
-from .urdf_file import read_urdf_text
-from .urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths
+from .kinematics import rotation_matrix
+from .urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths, urdf_text
 from . import limits
 from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
 from .reference_frames import Pose, Twist
-from .spawn_request import parse_spawn, placed
+from .spawn_request import SpawnRequest, parse_spawn, placed
 from .world_bullet import (MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK, body_pool,
                            build_world, place_world_bodies, reused_world_bodies)
 from .world_lights import Light, read_lights
 from .world_models import (LinkPart, ModelRegistry, RequestError, WorldModel, check_model_name,
-                           model_of_urdf_body, models_of_world, urdf_collision_names)
+                           model_of_urdf_body, models_of_world)
 
 
 @dataclass
@@ -238,7 +238,7 @@ class WorldControl:
         request = parse_spawn(name, xml, pose, kind)
         cid = self.sim.physics.client
         if request.robot is not None:
-            self._add_robot(name, request.robot, pose, robot_namespace)
+            self._add_robot(request, pose, robot_namespace)
             return
         pool = body_pool(self.sim.physics)
         if request.world is not None:
@@ -253,24 +253,20 @@ class WorldControl:
             model = models_of_world(request.world, bodies, cid, source="spawned")[0]
             built = list(dict.fromkeys(bodies.values()))
         else:
-            model = self._load_urdf(name, request.urdf, pose)
+            model = self._load_urdf(request, pose)
             key, built = self._urdf_key(request.urdf), [model.parts[0].body]
         self.models.add(model)
         self._spawned[name] = (key, built)
 
-    def _add_robot(self, name: str, urdf: str, pose: Pose, namespace: str) -> None:
-        """A robot with its URDF's plugins; its <gazebo> blocks are checked before anything
-        is built (a bad one refuses the spawn naming the element). Relative mesh filenames are
-        taken from the working directory."""
-        try:
-            description = read_urdf_text(urdf, "model_xml of %s" % name)
-        except UserError as err:
-            raise RequestError("SpawnModel: Failure - %s" % err) from None
+    def _add_robot(self, request: SpawnRequest, pose: Pose, namespace: str) -> None:
+        """A robot with its URDF's plugins (read and checked by parse_spawn, before anything
+        is built), written out with each mesh filename the absolute path of its file."""
+        description = request.description
         fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_robot_")
         try:
             with os.fdopen(fd, "w") as f:
-                f.write(absolute_meshes(urdf, os.getcwd(), mesh_paths(description)))
-            self.sim.add_robot(name, namespace, replace(description, path=path), pose)
+                f.write(urdf_text(absolute_meshes(description.root, mesh_paths(description))))
+            self.sim.add_robot(request.name, namespace, replace(description, path=path), pose)
         finally:
             os.unlink(path)
 
@@ -280,18 +276,18 @@ class WorldControl:
         directory)."""
         return ("urdf", urdf, os.getcwd())
 
-    def _load_urdf(self, name: str, urdf: str, pose: Pose) -> WorldModel:
-        """A model of the plain URDF text ``urdf`` loaded at ``pose``, written for pybullet
+    def _load_urdf(self, request: SpawnRequest, pose: Pose) -> WorldModel:
+        """A model of the plain URDF of ``request`` loaded at ``pose``, written for pybullet
         one element a line (urdf_meshes.bullet_urdf_text: it cuts long lines)."""
         cid = self.sim.physics.client
-        source = urdf
-        collisions = urdf_collision_names(urdf)
+        name = request.name
+        collisions = request.description.collision_names()
         try:   # meshes as the Wavefront files pybullet loads (urdf_meshes)
-            urdf = bullet_urdf_text(urdf, os.getcwd())
+            urdf = bullet_urdf_text(request.plain_urdf(), os.getcwd())
         except UserError as err:
             raise RequestError("SpawnModel: Failure - %s" % err) from None
         pool = body_pool(self.sim.physics)
-        reused = pool.take(self._urdf_key(source))
+        reused = pool.take(self._urdf_key(request.urdf))
         body = reused[0] if reused else self._new_urdf_body(urdf, cid)
         if not reused:
             pool.remember([body])
@@ -307,7 +303,7 @@ class WorldControl:
                                                physicsClientId=cid)
         model = model_of_urdf_body(name, body, cid, "spawned", spawn_pose=pose,
                                    collisions=collisions)
-        model.rebuild_hook = lambda: self._load_urdf(name, source, pose)   # state went NaN
+        model.rebuild_hook = lambda: self._load_urdf(request, pose)   # state went NaN
         model.set_state(pose, rf.ZERO_TWIST)
         return model
 
@@ -488,7 +484,7 @@ class WorldControl:
             com = rf.inverse(link.in_body)
         else:
             com = (tuple(info[3]), tuple(info[4]))
-        rotation = np.array(pybullet.getMatrixFromQuaternion(com[1])).reshape(3, 3)
+        rotation = rotation_matrix(com[1])
         return info[0], tuple(com[0]), rotation, np.array(info[2], dtype=float)
 
     def get_link_properties(self, scoped: str) -> LinkProperties:

@@ -9,13 +9,13 @@ Colours (r, g, b, a) in 0..1; directions and positions in m, world frame.
 import os
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
-from xml.etree import ElementTree
 
-from .kinematics import quat_from_rpy
+from ..errors import UserError
+from . import xml_reader
+from .kinematics import IDENTITY, Pose, Vector3, pose_from_xyz_rpy
+from .xml_reader import Element
 
 Rgba = Tuple[float, float, float, float]
-Vector3 = Tuple[float, float, float]
-Pose = Tuple[Vector3, Tuple[float, float, float, float]]
 
 
 @dataclass
@@ -32,28 +32,23 @@ class Light:
     attenuation_linear: float = 1.0
     attenuation_quadratic: float = 0.0
     direction: Vector3 = (0.0, 0.0, -1.0)
-    pose: Pose = field(default=((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)))
+    pose: Pose = field(default=IDENTITY)
 
 
-def _numbers(elem: Optional[ElementTree.Element], count: int, default):
-    if elem is None or not (elem.text or "").strip():
-        return default
-    try:
-        values = tuple(float(v) for v in elem.text.split())
-    except ValueError:
-        return default
-    return values if len(values) == count else default
+def _numbers(elem: Optional[Element], count: int, default):
+    """``count`` numbers of ``elem``'s text; ``default`` if it has not exactly those (a light
+    that cannot be read keeps SDF's defaults)."""
+    values = xml_reader.numbers(elem.value, count, finite=False) if elem is not None else None
+    return default if values is None else values
 
 
-def _pose(elem: Optional[ElementTree.Element], default: Pose) -> Pose:
+def _pose(elem: Optional[Element], default: Pose) -> Pose:
     values = _numbers(elem, 6, None)
-    if values is None:
-        return default
-    return tuple(values[:3]), quat_from_rpy(*values[3:])
+    return default if values is None else pose_from_xyz_rpy(values)
 
 
-def light_of(elem: ElementTree.Element, name: Optional[str] = None,
-             pose: Optional[ElementTree.Element] = None) -> Light:
+def light_of(elem: Element, name: Optional[str] = None,
+             pose: Optional[Element] = None) -> Light:
     """The Light of a ``<light>`` element (``name``/``pose``: an include's overrides)."""
     light = Light(name or elem.get("name", ""), elem.get("type", "point"))
     shadows = elem.find("cast_shadows")
@@ -72,7 +67,7 @@ def light_of(elem: ElementTree.Element, name: Optional[str] = None,
     return light
 
 
-def _included_lights(include: ElementTree.Element, base_dir: str) -> List[Light]:
+def _included_lights(include: Element, base_dir: str) -> List[Light]:
     """The lights of an ``<include>`` of a light model; [] for anything else or unreadable."""
     uri = (include.findtext("uri") or "").strip()
     if not uri:
@@ -82,7 +77,7 @@ def _included_lights(include: ElementTree.Element, base_dir: str) -> List[Light]
         from .world_sdf import parse_xml
         found = resolve_uri(uri, base_dir)
         sdf = model_sdf_file(found, parse_xml) if os.path.isdir(found) else found
-        root = ElementTree.parse(sdf).getroot()
+        root = xml_reader.parse_file(sdf, "light model")
     except Exception:  # noqa: BLE001 - a light that cannot be read is not there
         return []
     if root.find(".//model") is not None:
@@ -97,8 +92,8 @@ def read_lights(path: str) -> Dict[str, Light]:
     """The lights of the world file at ``path`` by name, in file order; {} if there are none or
     the file cannot be read."""
     try:
-        root = ElementTree.parse(path).getroot()
-    except (OSError, ElementTree.ParseError):
+        root = xml_reader.parse_file(path, "world file")
+    except UserError:
         return {}
     world = root if root.tag == "world" else root.find("world")
     if world is None:

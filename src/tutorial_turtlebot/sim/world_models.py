@@ -11,10 +11,10 @@ in m/s and rad/s, world frame (reference_frames).
 import math
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Tuple
-from xml.etree import ElementTree
 
 from .bullet import pybullet
 from . import reference_frames as rf
+from .kinematics import pose_from_xyz_rpy
 from .reference_frames import Pose, Twist
 from .world_sdf import World
 
@@ -26,7 +26,7 @@ class RequestError(Exception):
 
 
 def robot_model_name(world: str, model: str) -> str:
-    """The name turtlebot3_gazebo's launch files give the robot in ``world`` (gazebo_api.md 2.2):
+    """The name turtlebot3_gazebo's launches give the robot in ``world`` (doc/turtlebot3.md 4.1):
     ``turtlebot3`` in the house, ``turtlebot3_burger`` in the learning stages and AutoRace,
     else ``turtlebot3_<model>``."""
     if world == "turtlebot3_house":
@@ -298,18 +298,13 @@ def _base_pose(body: int, cid: int) -> Pose:
     return tuple(pos), tuple(orn)
 
 
-def sdf_pose(pose6) -> Pose:
-    """An SDF pose (x, y, z, roll, pitch, yaw) as (position, quaternion)."""
-    return tuple(pose6[:3]), rf.quat_from_rpy(*pose6[3:])
-
-
 def models_of_world(world: World, bodies: Dict[str, int], cid: int,
                     source: str = "world") -> List[WorldModel]:
     """The WorldModels of a world built by world_bullet.build_world (shape name -> body)."""
     from .world_bullet import link_com_pose
     out = []
     for spec in world.model_specs:
-        model_pose = sdf_pose(spec.pose)
+        model_pose = pose_from_xyz_rpy(spec.pose)
         to_model = rf.inverse(model_pose)
         shapes = world.model_shapes(spec.name)
         parts: List[BodyPart] = []
@@ -326,7 +321,7 @@ def models_of_world(world: World, bodies: Dict[str, int], cid: int,
         links = []
         for link in spec.links:
             local = link.scoped[len(spec.name) + 2:]
-            link_pose = sdf_pose(link.pose)
+            link_pose = pose_from_xyz_rpy(link.pose)
             body = link_body.get(link.scoped)
             if body is None:
                 links.append(LinkPart(local, in_model=rf.compose(to_model, link_pose)))
@@ -352,59 +347,6 @@ def _sdf_rebuilder(world: World, name: str, cid: int, source: str
     return rebuild
 
 
-LUMP = "_fixed_joint_lump__"
-
-
-def urdf_collision_names(urdf: str) -> Dict[str, List[str]]:
-    """Gazebo's names of a URDF's collisions (get_model_properties' geom_names), by the link
-    that holds them once fixed joints are lumped, as gazebo_ros's URDF to SDF conversion
-    (sdformat's parser_urdf) names them: a link takes its own collisions, then those of its
-    fixed-jointed children (depth first, children in joint-name order, as urdfdom keeps
-    them); the i-th (from 0) is called ``<name>_collision`` plus ``_<i>`` when i > 0, where
-    <name> is the collision's own name attribute or else the link it came from, and a name that
-    does not start with the holding link's name is prefixed ``<link>_fixed_joint_lump__``. A
-    TurtleBot3 Burger: base_footprint holds ``base_footprint_fixed_joint_lump__base_link_
-    collision``, ``..._caster_back_link_collision_1`` and ``..._base_scan_collision_2``;
-    each wheel link ``wheel_left_link_collision``. ``urdf``: the XML text; {} if unreadable."""
-    try:
-        robot = ElementTree.fromstring(urdf)
-    except (ElementTree.ParseError, TypeError, ValueError):
-        return {}
-    links = {link.get("name"): link for link in robot.findall("link")}
-    children: Dict[str, List[Tuple[str, str, str]]] = {}
-    parent_kind: Dict[str, str] = {}        # link -> the type of its parent joint
-    for joint in robot.findall("joint"):
-        parent, child = joint.find("parent"), joint.find("child")
-        if parent is None or child is None:
-            continue
-        kind = joint.get("type") or ""
-        children.setdefault(parent.get("link"), []).append(
-            (joint.get("name") or "", kind, child.get("link")))
-        parent_kind[child.get("link")] = kind
-    for joints in children.values():
-        joints.sort()
-
-    def lumped(link: str, depth: int = 0) -> List[str]:
-        if link not in links or depth > len(links):
-            return []
-        names = [c.get("name") or link for c in links[link].findall("collision")]
-        for _, kind, child in children.get(link, ()):
-            if kind == "fixed":
-                names += lumped(child, depth + 1)
-        return names
-
-    out: Dict[str, List[str]] = {}
-    for link in links:
-        if parent_kind.get(link) == "fixed":
-            continue      # lumped into the link above
-        names = []
-        for i, base in enumerate(lumped(link)):
-            geom = base + "_collision" + ("_%d" % i if i else "")
-            names.append(geom if geom.startswith(link) else link + LUMP + geom)
-        out[link] = names
-    return out
-
-
 def model_of_urdf_body(name: str, body: int, cid: int, source: str,
                        reset_hook: Optional[Callable[[], None]] = None,
                        spawn_pose: Optional[Pose] = None,
@@ -412,7 +354,8 @@ def model_of_urdf_body(name: str, body: int, cid: int, source: str,
                        collisions: Optional[Dict[str, List[str]]] = None) -> WorldModel:
     """A WorldModel of a body loaded from a URDF: the model frame is its root link's frame;
     links are the root and every jointed link (fixed links merged, as Gazebo lumps them);
-    ``collisions``: urdf_collision_names of the URDF, the model's geoms in link order."""
+    ``collisions``: the URDF's RobotDescription.collision_names(), the model's geoms in
+    link order."""
     info = pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)
     com_in_root = (tuple(info[3]), tuple(info[4]))
     root = pybullet.getBodyInfo(body, physicsClientId=cid)[0].decode()

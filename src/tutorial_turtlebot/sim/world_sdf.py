@@ -16,28 +16,26 @@ model that is not ``<static>`` can be a movable rigid body. Elements that do not
 (physics, scene, light, gui, plugin, sensor, joint ...) are skipped. Anything else that would
 carry geometry (a heightmap, a mesh's ``<submesh>``, an actor) is an error, never a silent gap.
 
-Units: metres, radians. Poses are in the world frame (z up); angles are SDF's fixed-axis roll,
-pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
+Units: metres, radians. Poses are in the world frame (z up), kept as SDF writes them
+(kinematics.XyzRpy: x, y, z, then SDF's fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch)
+Rx(roll)); kinematics.pose_from_xyz_rpy makes them quaternion poses. Errors are xml_reader's
+one line: file, line, what is wrong.
 """
 import math
 import os
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
-from xml.parsers import expat
-
-import numpy as np
 
 from ..errors import UserError, WorldError
 from . import limits
+from . import xml_reader
 from .asset_uri import AssetError, model_sdf_file, resolve_uri
-from .kinematics import matrix_from_rpy, rpy_from_matrix
+from .kinematics import ZERO_XYZ_RPY, XyzRpy, compose_xyz_rpy, rpy_from_matrix
 from .package_data import data_dir
+from .xml_reader import Element, XmlReader
 
-Pose = Tuple[float, float, float, float, float, float]   # x, y, z (m), roll, pitch, yaw (rad)
 Rgba = Tuple[float, float, float, float]
 Spawn = Tuple[float, float, float]                       # x, y (m), yaw (rad) of base_footprint
-
-IDENTITY: Pose = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 KINDS = ("box", "cylinder", "sphere", "plane", "polyline", "mesh")
 MAX_INCLUDE_DEPTH = 16        # <include>s nested deeper than this are refused (a model including itself)
 DEFAULT_RGBA: Rgba = (0.7, 0.7, 0.7, 1.0)   # a visual without material: Gazebo's light grey
@@ -72,7 +70,7 @@ class Shape:
 
     name: str                # scoped as in Gazebo: "model::link::element" (nested models add parts)
     kind: str                # one of KINDS
-    pose: Pose               # world pose of the shape's frame
+    pose: XyzRpy             # world pose of the shape's frame
     size: Tuple[float, ...]  # box (x, y, z); cylinder (radius, length); sphere (radius,);
     #                          plane (x, y); polyline (height,); mesh (scale x, y, z)
     points: Tuple[Tuple[float, float], ...] = ()  # polyline corners (x, y), counter-clockwise
@@ -92,7 +90,7 @@ class Inertial:
     """A link's mass properties; SDF's defaults where the file gives none."""
 
     mass: float = 1.0                                    # kg
-    pose: Pose = IDENTITY                                # centre of mass in the link frame
+    pose: XyzRpy = ZERO_XYZ_RPY                                # centre of mass in the link frame
     inertia: Tuple[float, ...] = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)  # ixx iyy izz ixy ixz iyz, kg m^2
 
 
@@ -102,7 +100,7 @@ class Link:
 
     name: str                # the link's own name (Gazebo's body_names)
     scoped: str              # "model::link" (nested models add parts), as /gazebo/link_states
-    pose: Pose               # world pose of the link frame
+    pose: XyzRpy             # world pose of the link frame
     inertial: Inertial = Inertial()
 
 
@@ -111,7 +109,7 @@ class Model:
     """A top-level model of a world file, as /gazebo/model_states lists it."""
 
     name: str
-    pose: Pose               # world pose of the model frame
+    pose: XyzRpy             # world pose of the model frame
     static: bool
     links: Tuple[Link, ...]
     joints: Tuple[str, ...] = ()
@@ -166,13 +164,13 @@ class WorldEntry(NamedTuple):
 
 WORLD_DIR = data_dir("worlds")
 
-# The spawn poses of the turtlebot3_gazebo launch files (tb3_facts.md 4.1); the robot faces +x.
+# The spawn poses of the turtlebot3_gazebo launch files (doc/turtlebot3.md 4.1); the robot faces +x.
 _CATALOGUE = (
     ("empty", WorldEntry("empty.world", (0.0, 0.0, 0.0))),
     ("turtlebot3_world", WorldEntry("turtlebot3_world.world", (-2.0, -0.5, 0.0))),
     ("turtlebot3_house", WorldEntry("turtlebot3_house.world", (-3.0, 1.0, 0.0))),
     ("turtlebot3_autorace", WorldEntry("turtlebot3_autorace.world", (0.245, -1.787, 0.0))),
-    # The learning stages of turtlebot3_machine_learning (gazebo_api.md 3.1).
+    # The learning stages of turtlebot3_machine_learning (doc/turtlebot3.md 4.6).
     ("turtlebot3_stage_1", WorldEntry("turtlebot3_stage_1.world", (0.0, 0.0, 0.0))),
     ("turtlebot3_stage_2", WorldEntry("turtlebot3_stage_2.world", (0.0, 0.0, 0.0))),
     ("turtlebot3_stage_3", WorldEntry("turtlebot3_stage_3.world", (0.0, 0.0, 0.0))),
@@ -214,96 +212,23 @@ def resolve_world(name_or_path: str) -> Tuple[str, Optional[Spawn]]:
 
 # --- XML with line numbers ----------------------------------------------------------------------
 
-@dataclass
-class _Node:
-    tag: str
-    attrib: Dict[str, str]
-    line: int
-    text: str = ""
-    children: List["_Node"] = field(default_factory=list)
-
-    def child(self, tag: str) -> Optional["_Node"]:
-        return next((c for c in self.children if c.tag == tag), None)
-
-    def all(self, tag: str) -> List["_Node"]:
-        return [c for c in self.children if c.tag == tag]
+def _parse_xml(path: str) -> Element:
+    """The root element of the SDF file at ``path``; WorldError (file, line) if it cannot."""
+    return xml_reader.parse_file(path, "world file", WorldError)
 
 
-MAX_XML_DEPTH = 64            # elements nested deeper than this are refused (no real model nests so)
+def parse_xml(data, source: str) -> Element:
+    """The root element of the XML text ``data`` (str or bytes): xml_reader.parse, raising
+    WorldError."""
+    return xml_reader.parse(data, source, WorldError)
 
 
-def _parse_xml(path: str) -> _Node:
-    """The document's root element; malformed XML raises WorldError naming file and line."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except FileNotFoundError:
-        raise WorldError("world file not found: %s" % path) from None
-    except OSError as err:
-        raise WorldError("cannot read world file %s: %s" % (path, err.strerror)) from None
-    return parse_xml(data, path)
-
-
-def parse_xml(data, source: str, max_depth: int = MAX_XML_DEPTH) -> _Node:
-    """The root element of the XML text ``data`` (str or bytes); WorldError naming ``source`` and
-    the line for malformed XML, a DOCTYPE (entities are never expanded) or nesting deeper than
-    ``max_depth`` elements."""
-    stack: List[_Node] = []
-    roots: List[_Node] = []
-    parser = expat.ParserCreate()
-
-    class _Refused(Exception):
-        pass
-
-    def start(tag, attrib):
-        if len(stack) >= max_depth:
-            raise _Refused("%s:%d: elements nested more than %d deep"
-                           % (source, parser.CurrentLineNumber, max_depth))
-        node = _Node(tag, attrib, parser.CurrentLineNumber)
-        (stack[-1].children if stack else roots).append(node)
-        stack.append(node)
-
-    def end(_tag):
-        node = stack.pop()
-        node.text = node.text.strip()
-
-    def text(data):
-        if stack:
-            stack[-1].text += data
-
-    def doctype(*_args):
-        raise _Refused("%s:%d: a DOCTYPE (entity definitions) is not supported"
-                       % (source, parser.CurrentLineNumber))
-
-    parser.StartElementHandler = start
-    parser.EndElementHandler = end
-    parser.CharacterDataHandler = text
-    parser.StartDoctypeDeclHandler = doctype
-    try:
-        parser.Parse(data, True)
-    except _Refused as err:
-        raise WorldError(str(err)) from None
-    except expat.ExpatError as err:
-        raise WorldError("%s:%d: malformed XML: %s"
-                         % (source, err.lineno, expat.ErrorString(err.code))) from None
-    return roots[0]
-
-
-# --- pose algebra -------------------------------------------------------------------------------
-
-def compose(parent: Pose, child: Pose) -> Pose:
-    """The pose ``child`` (given in the ``parent`` frame) expressed in parent's own frame."""
-    r = matrix_from_rpy(*parent[3:])
-    x, y, z = (float(v) for v in np.asarray(parent[:3]) + r @ np.asarray(child[:3]))
-    return (x, y, z) + rpy_from_matrix(r @ matrix_from_rpy(*child[3:]))
-
-
-def _normal_pose(n: Sequence[float]) -> Pose:
+def _normal_pose(n: Sequence[float]) -> XyzRpy:
     """A rotation taking +z onto the unit vector ``n`` (the shortest one)."""
     axis = (-n[1], n[0], 0.0)                    # z x n
     s, c = math.hypot(axis[0], axis[1]), n[2]
     if s < 1e-12:
-        return IDENTITY if c > 0 else (0.0, 0.0, 0.0, math.pi, 0.0, 0.0)
+        return ZERO_XYZ_RPY if c > 0 else (0.0, 0.0, 0.0, math.pi, 0.0, 0.0)
     ux, uy = axis[0] / s, axis[1] / s
     t = 1.0 - c                                  # Rodrigues with a horizontal unit axis (ux, uy, 0)
     m = ((c + ux * ux * t, ux * uy * t, uy * s),
@@ -351,12 +276,13 @@ def _clean_polygon(points: List[Tuple[float, float]]) -> Optional[Tuple[Tuple[fl
 
 # --- the loader ---------------------------------------------------------------------------------
 
-class _Loader:
+class _Loader(XmlReader):
     """Walks one SDF document; every error names the file and the line of the element at fault."""
 
     def __init__(self, path: str, base_dir: Optional[str] = None, depth: int = 0):
         """``path`` names the document in errors; relative URIs are read from ``base_dir``
         (default: the document's folder); ``depth`` counts the includes around it."""
+        super().__init__(path, WorldError)
         self.path = path
         self.base_dir = base_dir if base_dir is not None else os.path.dirname(path)
         self.depth = depth
@@ -364,76 +290,52 @@ class _Loader:
         self._links: List[Link] = []
         self._joints: List[str] = []
 
-    def fail(self, node: _Node, problem: str) -> WorldError:
-        return WorldError("%s:%d: %s" % (self.path, node.line, problem))
-
     # numbers
 
-    def floats(self, node: _Node, count: int, finite: bool = True) -> Tuple[float, ...]:
-        """``count`` numbers of ``node``'s text; ``finite`` False lets NaN and inf through
-        (to a range check of limits, which names the limit)."""
-        try:
-            values = tuple(float(v) for v in node.text.split())
-        except ValueError:
-            values = ()
-        if len(values) != count or (finite and not all(math.isfinite(v) for v in values)):
-            raise self.fail(node, "<%s> needs %d number%s, got %r"
-                            % (node.tag, count, "s" if count > 1 else "", node.text))
-        return values
-
-    def positive(self, parent: _Node, tag: str, count: int, default: Tuple[float, ...]):
+    def positive(self, parent: Element, tag: str, count: int, default: Tuple[float, ...]):
         node = parent.child(tag)
         if node is None:
             return default
         values = self.floats(node, count, finite=False)
         problem = limits.size_problem("<%s>" % tag, values)
         if problem:
-            raise self.fail(node, problem)
+            self.fail_bare(node, problem)
         return values
 
-    def flag(self, node: Optional[_Node]) -> bool:
-        if node is None:
-            return False
-        if node.text.lower() in ("true", "1"):
-            return True
-        if node.text.lower() in ("false", "0"):
-            return False
-        raise self.fail(node, "<%s> must be true or false, got %r" % (node.tag, node.text))
-
-    def pose(self, parent: _Node) -> Pose:
+    def pose(self, parent: Element) -> XyzRpy:
         node = parent.child("pose")
-        if node is None or not node.text:
-            return IDENTITY
+        if node is None or not node.value:
+            return ZERO_XYZ_RPY
         for frame in ("relative_to", "frame"):
             if node.attrib.get(frame):
-                raise self.fail(node, "<pose %s=...> is not supported: give poses relative to "
-                                      "the parent element" % frame)
+                self.fail_bare(node, "<pose %s=...> is not supported: give poses relative to "
+                                     "the parent element" % frame)
         if node.attrib.get("rotation_format", "euler_rpy") != "euler_rpy":
-            raise self.fail(node, "<pose rotation_format=...> is not supported: use euler_rpy")
+            self.fail_bare(node, "<pose rotation_format=...> is not supported: use euler_rpy")
         x, y, z, roll, pitch, yaw = self.floats(node, 6)
         if node.attrib.get("degrees", "false").lower() in ("true", "1"):
             roll, pitch, yaw = (math.radians(a) for a in (roll, pitch, yaw))
         problem = (limits.position_problem("<pose>", (x, y, z))
                    or limits.angles_problem("<pose>", (roll, pitch, yaw)))
         if problem:
-            raise self.fail(node, problem)
+            self.fail_bare(node, problem)
         return (x, y, z, roll, pitch, yaw)
 
     # structure
 
-    def document(self, root: _Node) -> World:
+    def document(self, root: Element) -> World:
         if root.tag != "sdf":
-            raise self.fail(root, "not an SDF file: the root element is <%s>, not <sdf>" % root.tag)
+            self.fail_bare(root, "not an SDF file: the root element is <%s>, not <sdf>" % root.tag)
         world = root.child("world")
         if world is None:
             if not root.all("model"):
-                raise self.fail(root, "no <world> or <model> in this file")
+                self.fail_bare(root, "no <world> or <model> in this file")
             world, name = root, os.path.splitext(os.path.basename(self.path))[0]
         else:
             name = world.attrib.get("name", "default")
         return self.models_of(world, name)
 
-    def models_of(self, world: _Node, name: str, parent: Pose = IDENTITY) -> World:
+    def models_of(self, world: Element, name: str, parent: XyzRpy = ZERO_XYZ_RPY) -> World:
         """The World made of ``world``'s top-level models and includes, placed in ``parent``."""
         models: List[Model] = []
         for node in world.children:
@@ -442,43 +344,43 @@ class _Loader:
             elif node.tag == "include":
                 models.extend(self.include(node, parent, ""))
             elif node.tag in _UNSUPPORTED_WORLD:
-                raise self.fail(node, "<%s> is not supported: build it from models" % node.tag)
+                self.fail_bare(node, "<%s> is not supported: build it from models" % node.tag)
         return World(name, self.path, tuple(m.name for m in models), tuple(self.shapes),
                      tuple(models))
 
-    def top_model(self, node: _Node, parent: Pose) -> Model:
+    def top_model(self, node: Element, parent: XyzRpy) -> Model:
         self._links: List[Link] = []
         self._joints: List[str] = []
         name = self.model(node, parent, "", False)
-        pose = compose(parent, self.pose(node))
-        return Model(name, pose, self.flag(node.child("static")), tuple(self._links),
+        pose = compose_xyz_rpy(parent, self.pose(node))
+        return Model(name, pose, self.flag(node, "static", False), tuple(self._links),
                      tuple(self._joints))
 
-    def include(self, node: _Node, parent: Pose, scope: str,
+    def include(self, node: Element, parent: XyzRpy, scope: str,
                 parent_static: bool = False) -> List[Model]:
         """The model an <include> adds, read from the folder or file its <uri> names, with the
         include's <name>, <pose> and <static> in place of the model's own. At the top level it
         is a Model of the world; inside a model (``scope``) its links join that model. An SDF
         of lights only (model://sun) adds nothing."""
         uri_node = node.child("uri")
-        uri = uri_node.text if uri_node is not None else ""
+        uri = uri_node.value if uri_node is not None else ""
         if not uri:
-            raise self.fail(node, "<include> needs a <uri>")
+            self.fail_bare(node, "<include> needs a <uri>")
         if self.depth >= MAX_INCLUDE_DEPTH:
-            raise self.fail(node, "<include> of %s: includes nested more than %d deep (does a "
-                                  "model include itself?)" % (uri, MAX_INCLUDE_DEPTH))
+            self.fail_bare(node, "<include> of %s: includes nested more than %d deep (does a "
+                                 "model include itself?)" % (uri, MAX_INCLUDE_DEPTH))
         try:
             found = resolve_uri(uri, self.base_dir)
             sdf = model_sdf_file(found, parse_xml) if os.path.isdir(found) else found
         except AssetError as err:
-            raise self.fail(node, "<include>: %s" % err) from None
+            self.fail_bare(node, "<include>: %s" % err)
         root = _parse_xml(sdf)
         models = root.all("model")
         if len(models) != 1:
             if not models and root.all("light"):
                 return []
-            raise self.fail(node, "<include> of %s: %s must hold one <model>, it holds %d"
-                            % (uri, sdf, len(models)))
+            self.fail_bare(node, "<include> of %s: %s must hold one <model>, it holds %d"
+                           % (uri, sdf, len(models)))
         model = models[0]
         children = list(model.children)
         for tag in ("pose", "static"):
@@ -487,9 +389,9 @@ class _Loader:
                 children = [c for c in children if c.tag != tag] + [override]
         name_node = node.child("name")
         attrib = dict(model.attrib)
-        if name_node is not None and name_node.text:
-            attrib["name"] = name_node.text
-        model = _Node("model", attrib, model.line, model.text, children)
+        if name_node is not None and name_node.value:
+            attrib["name"] = name_node.value
+        model = xml_reader.element("model", attrib, model.line, children)
         inner = _Loader(sdf, depth=self.depth + 1)
         inner.shapes = self.shapes
         if not scope:
@@ -498,10 +400,10 @@ class _Loader:
         inner.model(model, parent, scope, parent_static)
         return []
 
-    def model(self, node: _Node, parent: Pose, scope: str, parent_static: bool) -> str:
+    def model(self, node: Element, parent: XyzRpy, scope: str, parent_static: bool) -> str:
         name = self.name(node)
-        pose = compose(parent, self.pose(node))
-        static = parent_static or self.flag(node.child("static"))
+        pose = compose_xyz_rpy(parent, self.pose(node))
+        static = parent_static or self.flag(node, "static", False)
         scope += name + "::"
         for child in node.children:
             if child.tag == "link":
@@ -514,14 +416,14 @@ class _Loader:
                 self._joints.append(self.name(child))
         return name
 
-    def name(self, node: _Node) -> str:
+    def name(self, node: Element) -> str:
         name = node.attrib.get("name", "")
         if not name:
-            raise self.fail(node, "<%s> needs a name attribute" % node.tag)
+            self.fail_bare(node, "<%s> needs a name attribute" % node.tag)
         return name
 
-    def link(self, node: _Node, parent: Pose, scope: str, static: bool) -> None:
-        pose = compose(parent, self.pose(node))
+    def link(self, node: Element, parent: XyzRpy, scope: str, static: bool) -> None:
+        pose = compose_xyz_rpy(parent, self.pose(node))
         own = self.name(node)
         link = scope + own
         scope = link + "::"
@@ -534,7 +436,7 @@ class _Loader:
         self.shapes.extend(self.pair_twins(shapes))
         self._links.append(Link(own, link, pose, self.inertial(node.child("inertial"))))
 
-    def inertial(self, node: Optional[_Node]) -> Inertial:
+    def inertial(self, node: Optional[Element]) -> Inertial:
         """A link's <inertial>, SDF's defaults for what it leaves out."""
         if node is None:
             return Inertial()
@@ -544,7 +446,7 @@ class _Loader:
             mass = self.floats(mass_node, 1, finite=False)[0]
             problem = limits.mass_problem(mass, field="<mass>")
             if problem:
-                raise self.fail(mass_node, problem)
+                self.fail_bare(mass_node, problem)
         inertia = list(Inertial.inertia)
         inertia_node = node.child("inertia")
         if inertia_node is not None:
@@ -555,10 +457,10 @@ class _Loader:
             problem = limits.inertia_problem(inertia[:3], inertia[3:], names=tuple(
                 "<inertia> %s" % n for n in limits.INERTIA_NAMES))
             if problem:
-                raise self.fail(inertia_node, problem)
+                self.fail_bare(inertia_node, problem)
         return Inertial(mass, self.pose(node), tuple(inertia))
 
-    def friction(self, collision: _Node) -> float:
+    def friction(self, collision: Element) -> float:
         """<surface><friction><ode><mu> of a collision (SDF's default 1)."""
         node = collision
         for tag in ("surface", "friction", "ode", "mu"):
@@ -568,20 +470,20 @@ class _Loader:
         mu = self.floats(node, 1, finite=False)[0]
         problem = limits.outside("<mu>", mu, 0.0, limits.MAX_FRICTION)
         if problem:
-            raise self.fail(node, problem)
+            self.fail_bare(node, problem)
         return mu
 
-    def element(self, node: _Node, parent: Pose, scope: str, static: bool) -> Optional[Shape]:
+    def element(self, node: Element, parent: XyzRpy, scope: str, static: bool) -> Optional[Shape]:
         """A collision or visual as a Shape; None for an empty geometry."""
         name = scope + self.name(node)
         geometry = node.child("geometry")
         if geometry is None or not geometry.children or geometry.children[0].tag == "empty":
             return None
         if len(geometry.children) > 1:
-            raise self.fail(geometry.children[1], "<geometry> of %s holds more than one shape "
-                                                  "(one <polyline> at most)" % name)
+            self.fail_bare(geometry.children[1], "<geometry> of %s holds more than one shape "
+                                                 "(one <polyline> at most)" % name)
         geo = geometry.children[0]
-        pose = compose(parent, self.pose(node))
+        pose = compose_xyz_rpy(parent, self.pose(node))
         points: Tuple[Tuple[float, float], ...] = ()
         if geo.tag == "box":
             size = self.positive(geo, "size", 3, (1.0, 1.0, 1.0))
@@ -596,16 +498,16 @@ class _Loader:
             normal = self.floats(normal_node, 3) if normal_node is not None else (0.0, 0.0, 1.0)
             length = math.hypot(*normal)     # no overflow for 1e200
             if length == 0:
-                raise self.fail(normal_node, "<normal> must not be zero")
-            pose = compose(pose, _normal_pose([v / length for v in normal]))
+                self.fail_bare(normal_node, "<normal> must not be zero")
+            pose = compose_xyz_rpy(pose, _normal_pose([v / length for v in normal]))
         elif geo.tag == "polyline":
             size = self.positive(geo, "height", 1, (1.0,))
             points = self.polygon(geo)
         elif geo.tag == "mesh":
             size, mesh = self.mesh(geo, name)
         else:
-            raise self.fail(geo, "unsupported geometry <%s> in %s (supported: %s)"
-                            % (geo.tag, name, ", ".join(KINDS)))
+            self.fail_bare(geo, "unsupported geometry <%s> in %s (supported: %s)"
+                           % (geo.tag, name, ", ".join(KINDS)))
         collision = node.tag == "collision"
         rgba = DEFAULT_RGBA if collision else self.colour(node.child("material"))
         mu = self.friction(node) if collision else 1.0
@@ -613,58 +515,58 @@ class _Loader:
         return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu,
                      mesh=mesh if geo.tag == "mesh" else "", mesh_colours=mesh_colours)
 
-    def mesh(self, geo: _Node, name: str) -> Tuple[Tuple[float, ...], str]:
+    def mesh(self, geo: Element, name: str) -> Tuple[Tuple[float, ...], str]:
         """(scale, absolute file) of a <mesh>, its file read once here so that a bad one is
         refused with this line."""
         from .mesh_file import load_mesh
         uri_node = geo.child("uri")
-        if uri_node is None or not uri_node.text:
-            raise self.fail(geo, "<mesh> of %s needs a <uri>" % name)
+        if uri_node is None or not uri_node.value:
+            self.fail_bare(geo, "<mesh> of %s needs a <uri>" % name)
         if geo.child("submesh") is not None:
-            raise self.fail(geo.child("submesh"), "<submesh> is not supported: give the part "
-                                                  "its own mesh file")
+            self.fail_bare(geo.child("submesh"), "<submesh> is not supported: give the part "
+                                                 "its own mesh file")
         scale = (1.0, 1.0, 1.0)
         scale_node = geo.child("scale")
         if scale_node is not None:
             scale = self.floats(scale_node, 3, finite=False)
             problem = limits.scale_problem(scale, "<scale>")
             if problem:
-                raise self.fail(scale_node, problem)
+                self.fail_bare(scale_node, problem)
         try:
-            path = resolve_uri(uri_node.text, self.base_dir)
+            path = resolve_uri(uri_node.value, self.base_dir)
             load_mesh(path, scale)
         except UserError as err:
-            raise self.fail(uri_node, str(err)) from None
+            self.fail_bare(uri_node, str(err))
         return scale, path
 
-    def polygon(self, polyline: _Node) -> Tuple[Tuple[float, float], ...]:
+    def polygon(self, polyline: Element) -> Tuple[Tuple[float, float], ...]:
         points = [self.floats(p, 2) for p in polyline.all("point")]
         for node, point in zip(polyline.all("point"), points):
             problem = limits.position_problem("<point>", point)
             if problem:
-                raise self.fail(node, problem)
+                self.fail_bare(node, problem)
         cleaned = _clean_polygon([(x, y) for x, y in points])
         if cleaned is None:
-            raise self.fail(polyline, "<polyline> must be a simple polygon of at least 3 corners "
-                                      "(not crossing itself)")
+            self.fail_bare(polyline, "<polyline> must be a simple polygon of at least 3 corners "
+                                     "(not crossing itself)")
         return cleaned
 
-    def colour(self, material: Optional[_Node]) -> Rgba:
+    def colour(self, material: Optional[Element]) -> Rgba:
         """Explicit <diffuse>, else <ambient>, else a known Gazebo script name, else grey."""
         if material is None:
             return DEFAULT_RGBA
         for tag in ("diffuse", "ambient"):
             node = material.child(tag)
             if node is not None:
-                values = node.text.split()
+                values = node.value.split()
                 rgba = self.floats(node, 4 if len(values) == 4 else 3)
                 if not all(0.0 <= v <= 1.0 for v in rgba):
-                    raise self.fail(node, "<%s> values must lie in 0..1, got %r" % (tag, node.text))
+                    self.fail_bare(node, "<%s> values must lie in 0..1, got %r" % (tag, node.value))
                 return tuple(rgba) + (1.0,) * (4 - len(rgba))
         script = material.child("script")
         script_name = script.child("name") if script is not None else None
         if script_name is not None:
-            return GAZEBO_MATERIALS.get(script_name.text, DEFAULT_RGBA)
+            return GAZEBO_MATERIALS.get(script_name.value, DEFAULT_RGBA)
         return DEFAULT_RGBA
 
     def pair_twins(self, shapes: List[Shape]) -> List[Shape]:
@@ -719,19 +621,21 @@ def load_world(path: str) -> World:
     return world
 
 
-def load_model_xml(text, source: str, name: str, pose: Pose = IDENTITY) -> World:
-    """The one ``<model>`` of an SDF document given as text (a spawn request's model_xml), renamed
-    ``name`` and placed with its own <pose> composed onto ``pose``; WorldError (one line with the
-    line number) if it is not that."""
-    root = parse_xml(text, source)
+def load_model_xml(root, source: str, name: str, pose: XyzRpy = ZERO_XYZ_RPY) -> World:
+    """The one ``<model>`` of an SDF document (a spawn request's model_xml): ``root`` is its
+    root element as xml_reader parsed it (changed here), or its text, parsed here. The model is
+    renamed ``name`` and placed with its own <pose> composed onto ``pose``; WorldError (one
+    line with the line number) if it is not that."""
+    if not isinstance(root, Element):
+        root = parse_xml(root, source)
     loader = _Loader(source, base_dir=os.getcwd())
     if root.tag not in ("sdf", "gazebo"):
-        raise loader.fail(root, "the root element is <%s>: an SDF model starts with <sdf>"
-                          % root.tag)
+        loader.fail_bare(root, "the root element is <%s>: an SDF model starts with <sdf>"
+                         % root.tag)
     models = root.all("model")
     if len(models) != 1:
-        raise loader.fail(root, "<sdf> must hold exactly one <model>, it holds %d" % len(models))
-    models[0].attrib = dict(models[0].attrib, name=name)
-    world = loader.models_of(_Node(root.tag, {}, root.line, children=models), name, pose)
+        loader.fail_bare(root, "<sdf> must hold exactly one <model>, it holds %d" % len(models))
+    models[0].set("name", name)
+    world = loader.models_of(xml_reader.element(root.tag, {}, root.line, models), name, pose)
     _check_names(world)
     return world

@@ -6,12 +6,11 @@ import os
 import pytest
 
 from tutorial_turtlebot.sim.package_data import data_dir
-from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.world_control import RequestError, WorldControl
+from tutorial_turtlebot.sim.world_control import RequestError
 from tutorial_turtlebot.sim.world_lights import read_lights
-from tutorial_turtlebot.sim.world_models import urdf_collision_names
+from tutorial_turtlebot.sim.urdf_file import read_urdf, read_urdf_text
 
-from test_applied_forces import ROBOT, WHEEL, at, box_xml, run
+from unit_helpers import CUBE, ROBOT, WHEEL, at, run
 
 BURGER_GEOMS = ["base_footprint_fixed_joint_lump__base_link_collision",
                 "base_footprint_fixed_joint_lump__caster_back_link_collision_1",
@@ -19,25 +18,17 @@ BURGER_GEOMS = ["base_footprint_fixed_joint_lump__base_link_collision",
                 "wheel_left_link_collision", "wheel_right_link_collision"]
 
 
-@pytest.fixture
-def world():
-    sim = Simulation(SimConfig(model="burger", world="empty"))
-    yield sim, WorldControl(sim)
-    sim.close()
-
-
 # --- geom_names ------------------------------------------------------------------------------
 
-def test_robot_geom_names_are_gazebos_collision_names(world):
-    _, wc = world
+def test_robot_geom_names_are_gazebos_collision_names(empty):
+    _, wc = empty
     props = wc.model_properties(ROBOT)
     assert props.geom_names == BURGER_GEOMS
     assert props.body_names == ["base_footprint", "wheel_left_link", "wheel_right_link"]
 
 
 def test_waffle_geom_names():
-    with open(os.path.join(data_dir("urdf"), "turtlebot3_waffle.urdf")) as f:
-        names = urdf_collision_names(f.read())
+    names = read_urdf(os.path.join(data_dir("urdf"), "turtlebot3_waffle.urdf")).collision_names()
     assert names["base_footprint"] == [
         "base_footprint_fixed_joint_lump__base_link_collision",
         "base_footprint_fixed_joint_lump__camera_link_collision_1",
@@ -53,20 +44,22 @@ def test_collision_naming_rules():
       <joint name="a_fix" type="fixed"><parent link="base"/><child link="base_plate"/></joint>
       <link name="shell"><collision/></link>
       <link name="base_plate"><collision/></link>
-      <joint name="arm" type="revolute"><parent link="shell"/><child link="arm_link"/></joint>
+      <joint name="arm" type="continuous"><parent link="shell"/><child link="arm_link"/></joint>
       <link name="arm_link"><collision/><collision/></link>
     </robot>"""
+    shape = '<geometry><sphere radius="0.1"/></geometry></collision>'
+    urdf = urdf.replace('"bumper"/>', '"bumper">' + shape).replace("<collision/>",
+                                                                    "<collision>" + shape)
     # base's own two, then its fixed children in joint-name order (a_fix before b_fix); a name
     # that starts with the holding link's name is not prefixed (base_plate), as sdformat does
-    assert urdf_collision_names(urdf) == {
+    assert read_urdf_text(urdf, "r").collision_names() == {
         "base": ["base_fixed_joint_lump__bumper_collision", "base_collision_1",
                  "base_plate_collision_2", "base_fixed_joint_lump__shell_collision_3"],
         "arm_link": ["arm_link_collision", "arm_link_collision_1"]}
-    assert urdf_collision_names("not xml") == {}
 
 
-def test_spawned_urdf_geom_names(world):
-    _, wc = world
+def test_spawned_urdf_geom_names(empty):
+    _, wc = empty
     wc.spawn("w", WHEEL, at(1.5, 0, 0.06), kind="urdf")
     props = wc.model_properties("w")
     assert props.geom_names == ["base_collision", "disc_collision"]
@@ -75,9 +68,9 @@ def test_spawned_urdf_geom_names(world):
 
 # --- link properties -------------------------------------------------------------------------
 
-def test_link_properties_get_and_set(world):
-    sim, wc = world
-    wc.spawn("box", box_xml(), at(2, 2, 0.075))
+def test_link_properties_get_and_set(empty):
+    sim, wc = empty
+    wc.spawn("box", CUBE, at(2, 2, 0.075))
     p = wc.get_link_properties("box::link")
     assert p.mass == pytest.approx(2.0)
     assert p.gravity_mode is True
@@ -99,9 +92,9 @@ def test_link_properties_get_and_set(world):
     run(sim, 0.2)
 
 
-def test_link_property_refusals(world):
-    _, wc = world
-    wc.spawn("box", box_xml(), at(2, 2, 0.075))
+def test_link_property_refusals(empty):
+    _, wc = empty
+    wc.spawn("box", CUBE, at(2, 2, 0.075))
     p = wc.get_link_properties("box::link")
     cases = [
         (lambda: wc.get_link_properties("box"), "GetLinkProperties: link not found, did you "
@@ -135,8 +128,8 @@ def test_link_property_refusals(world):
 
 # --- joints --------------------------------------------------------------------------------
 
-def test_joint_properties(world):
-    sim, wc = world
+def test_joint_properties(empty):
+    sim, wc = empty
     run(sim, 0.1)
     j = wc.get_joint_properties("wheel_left_joint")
     assert j.kind == "revolute"
@@ -152,8 +145,8 @@ def test_joint_properties(world):
         wc.get_joint_properties("nobody::wheel_left_joint")
 
 
-def test_set_model_configuration(world):
-    sim, wc = world
+def test_set_model_configuration(empty):
+    sim, wc = empty
     run(sim, 0.51)         # standing still a while (off the 30 Hz control ticks)
     status = wc.set_model_configuration(ROBOT, ["wheel_left_joint", "wheel_right_joint"],
                                         [1.0, -2.0])
@@ -182,8 +175,8 @@ def test_set_model_configuration(world):
     assert wc.get_joint_properties("wheel_left_joint").position[0] != pytest.approx(3.0)
 
 
-def test_set_model_configuration_refusals(world):
-    _, wc = world
+def test_set_model_configuration_refusals(empty):
+    _, wc = empty
     for call, words in [
             (lambda: wc.set_model_configuration("nobody", ["a"], [1.0]),
              "^SetModelConfiguration: model does not exist$"),
@@ -198,8 +191,8 @@ def test_set_model_configuration_refusals(world):
 
 # --- lights --------------------------------------------------------------------------------
 
-def test_lights_get_and_set(world):
-    _, wc = world
+def test_lights_get_and_set(empty):
+    _, wc = empty
     sun = wc.get_light("sun")
     assert sun.diffuse == (0.8, 0.8, 0.8, 1.0)
     assert (sun.attenuation_constant, sun.attenuation_linear,

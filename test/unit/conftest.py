@@ -1,0 +1,25 @@
+"""pytest fixtures shared by the unit tests (plain helpers: unit_helpers.py beside this file).
+The package is imported inside the fixtures: a module of it that fails to import fails the
+tests that use it, not the collection of every test here."""
+import pytest
+
+
+@pytest.fixture
+def empty():
+    """A Burger at the origin of the empty world, and the world API over it: (sim, wc)."""
+    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+    from tutorial_turtlebot.sim.world_control import WorldControl
+
+    sim = Simulation(SimConfig(model="burger", world="empty"))
+    yield sim, WorldControl(sim)
+    sim.close()
+
+
+@pytest.fixture
+def client():
+    """A pybullet client of its own (DIRECT: no window), disconnected afterwards."""
+    import pybullet
+
+    cid = pybullet.connect(pybullet.DIRECT)
+    yield cid
+    pybullet.disconnect(physicsClientId=cid)
