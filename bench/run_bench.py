@@ -11,7 +11,11 @@ Measured (Burger in turtlebot3_world unless said):
                     achieved factor, sim CPU (% of one core), sim memory (RSS, MB)
   jitter            the same: per topic, how far the gap between two arrivals differs from
                     the gap between their stamps (p50, p99, max in ms; bench/jitter.py)
-  fast              real_time_factor 0, every sensor subscribed / only /odom: achieved factor
+  fast              real_time_factor 0, every sensor subscribed / only /odom: achieved factor;
+                    with every sensor, the loop's wall time per sim second split by part
+                    (gazebo/part_times.py): physics (stepping), sensors (rays, IMU, odometry,
+                    wheels, camera), building (genpy messages filled), serializing (bytes
+                    made), sending (socket writes), other (requests, pacing, the loop)
   physics bound     the same world and robot stepped by pybullet with no ROS (and no sensors)
   world API         every sensor and /gazebo/model_states subscribed (CPU at real time, factor
                     as fast as possible); spawn and delete round trips; stage 1 with a
@@ -52,14 +56,19 @@ MESH_MODELS = os.path.abspath(os.path.join(FIXTURES, "gazebo_models"))
 sys.path.insert(0, os.path.join(HERE, os.pardir, "src"))
 
 ALL_SENSORS = ["/scan", "/odom", "/imu", "/joint_states", "/tf"]
+# gazebo/part_times.py's parts, as rows (idle is 0 as fast as possible)
+PART_ROWS = ("physics", "sensors", "building", "serializing", "sending", "other")
 TARGETS = {
-    "startup": "<= 2 s",
-    "rt_cpu": "<= 10 %",
+    "startup": "<= 1.0 s",
+    "rt_cpu": "<= 4 %",
     "rt_mem": "<= 200 MB",
     "fast_all": ">= 20x",
+    "fast_all_bound": ">= 0.6",
+    "fast_odom_bound": ">= 0.8",
     "rt_cpu_states": "<= 12 %",
-    "multi_rt_cpu": "<= 25 %",
-    "multi_fast": ">= 8x",
+    "multi_rt_cpu": "<= 10 %",
+    "multi_fast": ">= 20x",
+    "stage": ">= 100/s",
 }
 
 
@@ -184,12 +193,30 @@ def measure_startup(**run_args) -> float:
         run.stop()
 
 
-def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger", mesh_world=False):
+def read_part_times(path):
+    """(sim s, {part: s}) of the sim's part-times file (gazebo/part_times.py)."""
+    from tutorial_turtlebot.gazebo.part_times import read_line
+    for _ in range(50):
+        try:
+            with open(path) as f:
+                return read_line(f.read())
+        except (OSError, ValueError):   # not written yet, or being rewritten
+            time.sleep(0.05)
+    raise RuntimeError("the sim wrote no part times to %s" % path)
+
+
+def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger", mesh_world=False,
+                    parts=None):
     """(achieved factor, sim CPU % of one core, sim RSS MB, messages per sim second) with
-    ``topics`` subscribed; ``mesh_world``: in the mesh turtlebot3_world."""
+    ``topics`` subscribed; ``mesh_world``: in the mesh turtlebot3_world. ``parts``: a dict
+    filled with the loop's ms per sim second by part over the same window."""
+    import tempfile
     rate = ["real_time_factor:=%g" % rtf]
-    run = (SimRun(model=model, **mesh_world_run(rate)) if mesh_world
-           else SimRun(rate, model=model))
+    parts_file = tempfile.NamedTemporaryFile(prefix="bench_parts_", delete=False).name
+    env = {"TUTORIAL_TURTLEBOT_PART_TIMES": parts_file}
+    run = (SimRun(model=model, **dict(mesh_world_run(rate), env=dict(
+        mesh_world_run(rate)["env"], **env))) if mesh_world
+           else SimRun(rate, model=model, env=env))
     try:
         run.start()
         subs = run.start_helper("subscribers.py", *topics)
@@ -203,15 +230,21 @@ def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger", mesh_w
             read_report(subs)
         wall0, sim0, count0, _ = read_report(subs)
         cpu0 = cpu_seconds(pid)
+        parts0 = read_part_times(parts_file)
         samples = int(seconds)
         for _ in range(samples):
             wall1, sim1, count1, _ = read_report(subs)
         cpu1 = cpu_seconds(pid)
+        parts1 = read_part_times(parts_file)
+        if parts is not None:
+            span = parts1[0] - parts0[0]
+            parts.update({k: 1000.0 * (parts1[1][k] - parts0[1][k]) / span for k in parts1[1]})
         mem = rss_mb(pid)
         return ((sim1 - sim0) / (wall1 - wall0), 100.0 * (cpu1 - cpu0) / (wall1 - wall0), mem,
                 (count1 - count0) / (sim1 - sim0))
     finally:
         run.stop()
+        os.unlink(parts_file)
 
 
 JITTER_TOPICS = ["/clock", "/imu", "/odom", "/joint_states", "/scan"]
@@ -545,9 +578,13 @@ def main():
                 " / ".join("%.1f" % median([j[topic][k] for j in jitter if topic in j])
                            for k in range(3)), "ms", "each <= 5 ms of its moment")
     if "fast" in only:
-        fast_all = median([measure_running(0, ALL_SENSORS)[0] for _ in range(args.runs)])
+        fast_parts = [{} for _ in range(args.runs)]
+        fast_all = median([measure_running(0, ALL_SENSORS, parts=p)[0] for p in fast_parts])
         row("as fast as possible, every sensor subscribed", "%.1f" % fast_all, "x",
             TARGETS["fast_all"])
+        for part in PART_ROWS:
+            row("  the same: the loop's wall time per sim second, %s" % part,
+                "%.1f" % median([p[part] for p in fast_parts]), "ms")
     if "world" in only:
         with_states = ALL_SENSORS + ["/gazebo/model_states"]
         rt_states = [measure_running(1.0, with_states) for _ in range(args.runs)]
@@ -561,14 +598,17 @@ def main():
             "%.0f / %.0f" % (median([c[0] for c in calls]), median([c[1] for c in calls])),
             "ms", "each < 50 ms")
         row("stage 1, DQN-style client stepping once per scan (24 samples, max speed)",
-            "%.1f" % median([measure_stage_client() for _ in range(args.runs)]), "steps/s")
+            "%.1f" % median([measure_stage_client() for _ in range(args.runs)]), "steps/s",
+            TARGETS["stage"])
     if "fast" in only:
         fast_odom = median([measure_running(0, ["/odom"])[0] for _ in range(args.runs)])
         row("as fast as possible, only /odom subscribed", "%.1f" % fast_odom, "x")
         bound = median([physics_bound() for _ in range(args.runs)])
         row("physics bound: pybullet alone, no ROS, no sensors", "%.1f" % bound, "x")
-        row("  fast (every sensor) / physics bound", "%.2f" % (fast_all / bound), "")
-        row("  fast (only /odom) / physics bound", "%.2f" % (fast_odom / bound), "")
+        row("  fast (every sensor) / physics bound", "%.2f" % (fast_all / bound), "",
+            TARGETS["fast_all_bound"])
+        row("  fast (only /odom) / physics bound", "%.2f" % (fast_odom / bound), "",
+            TARGETS["fast_odom_bound"])
     if "subscribers" in only:
         for n in (1, 4, 8):
             row("as fast as possible, %d subscriber(s) to /scan" % n,

@@ -7,12 +7,9 @@ import time
 
 import pytest
 
-# The node module imports tf2_ros, whose compiled part is built for the system's Python only
-# (the Python 3.8 run of the unit tests has none).
-pytest.importorskip("tf2_ros", reason="tf2_ros is built for another Python")
-from tutorial_turtlebot.gazebo import sim_node  # noqa: E402
-from tutorial_turtlebot.gazebo.nonblocking_publisher import Backlog  # noqa: E402
-from tutorial_turtlebot.sim.pacing import MIN_REAL_TIME_FACTOR, Pacer  # noqa: E402
+from tutorial_turtlebot.gazebo import sim_node
+from tutorial_turtlebot.gazebo.nonblocking_publisher import Backlog
+from tutorial_turtlebot.sim.pacing import MIN_REAL_TIME_FACTOR, Pacer
 
 
 class FakeSim:

@@ -1,5 +1,5 @@
 """The physics is pinned: a fixed command sequence driven through Simulation gives the same
-trajectory, and the same laser ranges, to the last bit.
+trajectory, and the same sensor readings (laser, IMU, odometry, wheels), to the last bit.
 
 The digest below was taken before the stepping loop was reworked for speed (the ROS plumbing
 moved off the physics core): any change to the step, the solver settings, the contacts, the
@@ -8,6 +8,7 @@ the new digest from the failure message and say why in the commit.
 """
 import hashlib
 import struct
+from dataclasses import astuple
 
 from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 
@@ -15,12 +16,19 @@ from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 # an arc, backing while turning, stopped (the brake), then the Burger's top speeds.
 COMMANDS = [(0.2, 0.0), (0.1, 1.0), (-0.15, -0.5), (0.0, 0.0), (0.22, 2.84)]
 STEPS_PER_COMMAND = 400
-PINNED = "9c64841fcaff1f8b7f49e631af323d9d54248e6e3cd1e8a0be610332f5b5a5c3"
+# every float of a reading, in order
+READINGS = {
+    "imu": lambda robot: [v for part in astuple(robot.imu()) for v in part],
+    "odom": lambda robot: [v for part in astuple(robot.odom()) for v in part],
+    "joint_states": lambda robot: [v for part in robot.joint_states() for v in part],
+}
+PINNED = "8da7cf2909c4ef705fa0864af30308000a5083c49ecc832057506f4ec82e957d"
 
 
 def trajectory_digest():
-    """sha256 over the Burger's world pose (7 float64) after every step and the ranges of
-    every scan that falls due (float32), in turtlebot3_world from its default spawn."""
+    """sha256 over the Burger's world pose (7 float64) after every step and every reading
+    that falls due (scan ranges as float32, IMU, odometry and wheels as float64), in
+    turtlebot3_world from its default spawn."""
     sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
     digest = hashlib.sha256()
     try:
@@ -28,8 +36,13 @@ def trajectory_digest():
             if step % STEPS_PER_COMMAND == 0:
                 sim.command(*COMMANDS[step // STEPS_PER_COMMAND])
             for robot, name in sim.step():
-                if robot is not None and name == "scan":
+                if robot is None:
+                    continue
+                if name == "scan":
                     digest.update(robot.scan().tobytes())
+                elif name in READINGS:
+                    values = READINGS[name](robot)
+                    digest.update(struct.pack("<%dd" % len(values), *values))
             position, orientation = sim.robot.ground_truth()
             digest.update(struct.pack("<7d", *position, *orientation))
         return digest.hexdigest(), sim.robot.ground_truth()

@@ -16,7 +16,13 @@ the simulation loop calls it while anything is waiting.
 Between ``Backlog.hold()`` and ``Backlog.keep_until(t)`` messages are serialized but not
 written: they leave, in order, when ``send_due`` is called at wall time ``t`` or later. So the
 simulation makes a step's messages as soon as it has stepped, and sends them when their stamps
-are due on the wall clock, however long making them took.
+are due on the wall clock, however long making them took. What one subscriber connection is
+sent by one ``send_due`` goes in one write (one system call, one wake-up of the subscriber);
+a stalled subscriber that cannot take it loses it whole.
+
+``publisher.publish_packed(packed)`` sends a kept serialization (packed_messages) as rospy's
+``publish`` would send the message: numbered with the publisher's sequence, to every
+subscriber, without genpy or rospy's buffer.
 """
 import collections
 import errno
@@ -25,7 +31,10 @@ import socket
 import threading
 from typing import Optional
 
+from rospy.core import is_shutdown
 from rospy.exceptions import TransportTerminated
+
+from .part_times import TIMES
 
 _GONE = (errno.EPIPE, errno.ECONNRESET, errno.ENOTCONN, errno.EBADF)
 
@@ -57,15 +66,19 @@ class Backlog:
         return self._due[0][0] if self._due else None
 
     def send_due(self, now: float = math.inf) -> None:
-        """Send, in order, the kept groups due at ``now`` or before (all by default). A
-        subscriber that went away meanwhile is closed; rospy drops it at its next publish."""
+        """Send the kept groups due at ``now`` or before (all by default): a subscriber's
+        messages, in order, in one write. A subscriber that went away meanwhile is closed;
+        rospy drops it at its next publish."""
+        by_connection = {}
         while self._due and self._due[0][0] <= now:
             for connection, data in self._due.popleft()[1]:
-                try:
-                    connection.write_data(data)
-                except TransportTerminated:
-                    if not connection.done:
-                        connection.close()
+                by_connection.setdefault(connection, []).append(data)
+        for connection, chunks in by_connection.items():
+            try:
+                connection.write_data(chunks[0] if len(chunks) == 1 else b"".join(chunks))
+            except TransportTerminated:
+                if not connection.done:
+                    connection.close()
 
     def add(self, connection: "NonBlockingConnection") -> None:
         with self._lock:
@@ -101,6 +114,13 @@ class NonBlockingConnection:
     def write_data(self, data: bytes) -> bool:
         """Send one serialized message or keep it for later; never blocks. Raises
         TransportTerminated once the subscriber has gone (rospy then drops the connection)."""
+        part = TIMES.switch("sending")
+        try:
+            return self._write(data)
+        finally:
+            TIMES.switch(part)
+
+    def _write(self, data: bytes) -> bool:
         held = self._backlog.held
         if held is not None:  # the loop sends it when its moment is due: release()
             if self._connection.done:
@@ -193,3 +213,32 @@ def make_nonblocking(publisher, backlog: Backlog) -> None:
                 pass  # not a TCP socket (a test's socket pair)
         return add_connection(NonBlockingConnection(connection, backlog))
     impl.add_connection = add_nonblocking_connection
+    publisher.publish_packed = lambda packed: publish_packed(publisher, packed)
+
+
+def publish_packed(publisher, packed) -> bool:
+    """What ``publisher.publish(msg)`` does, for a message kept serialized in ``packed``
+    (packed_messages.Packed): nothing without a subscriber; else the next sequence number goes
+    into its header (if it has one), and its bytes to every connection. False if not sent."""
+    impl = publisher.impl
+    if impl is None or impl.closed or not impl.connections:
+        return False
+    with impl.publock:
+        impl.seq += 1
+        if packed.has_header:
+            packed.set_header_seq(impl.seq)
+        data = packed.bytes()
+        gone = []
+        for connection in impl.connections:
+            try:
+                if not is_shutdown():
+                    connection.write_data(data)
+            except Exception:  # as rospy: a connection that fails is closed and dropped
+                gone.append(connection)
+        impl.message_data_sent += len(data)
+    for connection in gone:
+        try:
+            connection.close()
+        except Exception:
+            pass
+    return True

@@ -19,13 +19,16 @@ A message type nobody subscribes to is not even computed.
 import math
 
 import rospy
-from geometry_msgs.msg import TransformStamped, Twist
+from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph.names import ns_join
 from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_srvs.srv import Empty, EmptyResponse
 
 from .camera_publisher import CameraPublisher
+from .packed_messages import (PackedImu, PackedJointState, PackedLaserScan, PackedOdometry,
+                              PackedTransform)
+from .part_times import TIMES
 
 # Gazebo diff-drive plugin's pose covariance diagonal (x, y, z, roll, pitch, yaw).
 POSE_COVARIANCE_DIAGONAL = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
@@ -40,13 +43,13 @@ def frame_prefix(namespace: str) -> str:
 class RobotTopics:
     """Publishers, messages and the cmd_vel subscriber of one SimRobot."""
 
-    def __init__(self, robot, make_publisher, tf_broadcaster):
+    def __init__(self, robot, make_publisher, tf_publisher):
         """``make_publisher(topic, type, queue_size=1)`` gives a (non-blocking) publisher;
-        ``tf_broadcaster``: the node's one tf2_ros.TransformBroadcaster on /tf."""
+        ``tf_publisher``: the node's one publisher of tf2_msgs/TFMessage on /tf."""
         self.robot = robot
         self.namespace = robot.namespace
         self.prefix = frame_prefix(robot.namespace)
-        self.tf = tf_broadcaster
+        self.tf_pub = tf_publisher
         self.command = None              # the latest (linear, angular), applied by the loop
         self.pubs = {}
         self.publishers = {}   # what the robot's schedules name (SimRobot.due), by name
@@ -106,96 +109,87 @@ class RobotTopics:
     # --- messages --------------------------------------------------------------------------------
 
     def _build_messages(self) -> None:
-        """Messages are filled in place each time: only the changing fields are written."""
+        """Each message is kept serialized (packed_messages): a publish rewrites only its
+        stamp, sequence number and readings."""
         robot = self.robot
         drive = robot.drive_plugin
         if drive:
-            self.odom_msg = Odometry()
-            self.odom_msg.header.frame_id = self.frame(drive.odometry_frame)
-            self.odom_msg.child_frame_id = self.frame(drive.robot_base_frame)
-            for i, value in enumerate(POSE_COVARIANCE_DIAGONAL):
-                self.odom_msg.pose.covariance[i * 7] = value
-            self.tf_msg = TransformStamped()
-            self.tf_msg.header.frame_id = self.odom_msg.header.frame_id
-            self.tf_msg.child_frame_id = self.odom_msg.child_frame_id
-            self.joint_msg = JointState(name=[drive.left_joint, drive.right_joint])
+            odom_frame = self.frame(drive.odometry_frame)
+            base_frame = self.frame(drive.robot_base_frame)
+            self.odom_packed = PackedOdometry(odom_frame, base_frame, POSE_COVARIANCE_DIAGONAL)
+            self.tf_packed = PackedTransform(odom_frame, base_frame)
+            self.joints_packed = PackedJointState("", [drive.left_joint, drive.right_joint])
         laser = robot.laser
         if laser:
-            self.scan_msg = LaserScan(angle_min=laser.angle_min, angle_max=laser.angle_max,
-                                      angle_increment=laser.angle_increment,
-                                      time_increment=0.0, scan_time=0.0,
-                                      range_min=laser.range_min, range_max=laser.range_max,
-                                      intensities=[0.0] * laser.samples)
-            self.scan_msg.header.frame_id = self.frame(robot.laser_sensor.frame)
-        if robot.imu_plugin:
-            self.imu_msg = Imu()
-            self.imu_msg.header.frame_id = self.frame(robot.imu_plugin.frame)
-            variance = robot.imu_plugin.gaussian_noise ** 2   # gazebo_ros_imu's covariances
-            for covariance in (self.imu_msg.orientation_covariance,
-                               self.imu_msg.angular_velocity_covariance,
-                               self.imu_msg.linear_acceleration_covariance):
-                covariance[0] = covariance[4] = covariance[8] = variance
+            scan = LaserScan(angle_min=laser.angle_min, angle_max=laser.angle_max,
+                             angle_increment=laser.angle_increment, time_increment=0.0,
+                             scan_time=0.0, range_min=laser.range_min,
+                             range_max=laser.range_max, intensities=[0.0] * laser.samples)
+            scan.header.frame_id = self.frame(robot.laser_sensor.frame)
+            self.scan_packed = PackedLaserScan(scan)
+        if robot.imu_plugin:   # gazebo_ros_imu's covariances: the noise's variance
+            self.imu_packed = PackedImu(self.frame(robot.imu_plugin.frame),
+                                        robot.imu_plugin.gaussian_noise ** 2)
 
     def _publish_odom(self, stamp) -> None:
         wants_odom = self.pubs["odom"].get_num_connections() > 0
         wants_tf = (self.robot.drive_plugin.publish_odom_tf
-                    and self.tf.pub_tf.get_num_connections() > 0)
+                    and self.tf_pub.get_num_connections() > 0)
         if not (wants_odom or wants_tf):
             return
+        TIMES.switch("sensors")
         state = self.robot.odom()
+        TIMES.switch("serializing")
         if wants_odom:
-            msg = self.odom_msg
-            msg.header.stamp = stamp
-            p, q = msg.pose.pose.position, msg.pose.pose.orientation
-            p.x, p.y, p.z = state.position
-            q.x, q.y, q.z, q.w = state.orientation
-            lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
-            lin.x, lin.y, lin.z = state.linear
-            ang.x, ang.y, ang.z = state.angular
-            self.pubs["odom"].publish(msg)
+            packed = self.odom_packed
+            packed.set_stamp(stamp.secs, stamp.nsecs)
+            packed.write(state.position, state.orientation, state.linear, state.angular)
+            self.pubs["odom"].publish_packed(packed)
         if wants_tf:
-            t = self.tf_msg
-            t.header.stamp = stamp
-            tr, rot = t.transform.translation, t.transform.rotation
-            tr.x, tr.y, tr.z = state.position
-            rot.x, rot.y, rot.z, rot.w = state.orientation
-            self.tf.sendTransform(t)
+            packed = self.tf_packed
+            packed.write(stamp.secs, stamp.nsecs, state.position, state.orientation)
+            self.tf_pub.publish_packed(packed)
 
     def _publish_joints(self, stamp) -> None:
         if self.pubs["joint_states"].get_num_connections() == 0:
             return
+        TIMES.switch("sensors")
         positions, velocities = self.robot.joint_states()
-        msg = self.joint_msg
-        msg.header.stamp = stamp
-        msg.position, msg.velocity = list(positions), list(velocities)
-        self.pubs["joint_states"].publish(msg)
+        TIMES.switch("serializing")
+        packed = self.joints_packed
+        packed.set_stamp(stamp.secs, stamp.nsecs)
+        packed.write(positions, velocities)
+        self.pubs["joint_states"].publish_packed(packed)
 
     def _publish_scan(self, stamp) -> None:
         if self.pubs["scan"].get_num_connections() == 0:
             return
-        msg = self.scan_msg
-        msg.header.stamp = stamp
-        msg.ranges = self.robot.scan().tolist()
-        self.pubs["scan"].publish(msg)
+        TIMES.switch("sensors")
+        ranges = self.robot.scan()
+        TIMES.switch("serializing")
+        packed = self.scan_packed
+        packed.set_stamp(stamp.secs, stamp.nsecs)
+        packed.write(ranges)
+        self.pubs["scan"].publish_packed(packed)
         self.sensor_updates["scan"] += 1
 
     def _publish_imu(self, stamp) -> None:
         if self.pubs["imu"].get_num_connections() == 0:
             return
+        TIMES.switch("sensors")
         state = self.robot.imu()
-        msg = self.imu_msg
-        msg.header.stamp = stamp
-        q, w, a = msg.orientation, msg.angular_velocity, msg.linear_acceleration
-        q.x, q.y, q.z, q.w = state.orientation
-        w.x, w.y, w.z = state.angular_velocity
-        a.x, a.y, a.z = state.linear_acceleration
-        self.pubs["imu"].publish(msg)
+        TIMES.switch("serializing")
+        packed = self.imu_packed
+        packed.set_stamp(stamp.secs, stamp.nsecs)
+        packed.write(state.orientation, state.angular_velocity, state.linear_acceleration)
+        self.pubs["imu"].publish_packed(packed)
         self.sensor_updates["imu"] += 1
 
     def _publish_camera(self, stamp) -> None:
         """A camera tick; a frame is rendered (and counted) only for a subscriber."""
         if any(pub.get_num_connections() > 0 for pub in self._frame_pubs):
             self.sensor_updates["camera"] += 1
+        TIMES.switch("sensors")   # rendering; its messages are built from the frame
         self.camera.publish(stamp)
 
     # --- input -----------------------------------------------------------------------------------

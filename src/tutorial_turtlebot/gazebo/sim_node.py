@@ -5,7 +5,8 @@ It owns the clock: physics runs at ``~max_step_size`` of sim time per step, pace
 ``/use_sim_time``. Every message of one step carries that step's sim time as its stamp.
 
 Publications (relative names resolve in the node's namespace, as Gazebo's plugins do):
-  /clock (rosgraph_msgs/Clock)          ~clock_rate Hz (100)
+  /clock (rosgraph_msgs/Clock)          ~clock_rate Hz of sim time (100), at most
+                                        ~pub_clock_frequency a wall second (1000)
   /tf (tf2_msgs/TFMessage)              every robot's odom -> base_footprint, 30 Hz
   each robot's topics, made from its URDF's <gazebo> plugins: see robot_topics
   (sim.launch's robot in the node's namespace: odom, joint_states, scan, imu, camera/...,
@@ -35,6 +36,10 @@ Parameters (private):
   ~paused (false)             start with physics paused
   ~max_step_size (0.0025)     s of sim time per physics step
   ~clock_rate (100.0)         Hz of sim time
+  ~pub_clock_frequency (1000.0)  Gazebo's: at most this many /clock messages a wall second
+                              (0 = no limit). At real time it never bites; as fast as
+                              possible it spares every node under /use_sim_time the clock
+                              messages it could not tell apart (1 ms of wall time each)
   ~status_period (10.0)       wall s between status lines (sim time, factor, pose); 0 = never
   ~seed (0)                   laser noise seed
 """
@@ -49,8 +54,8 @@ import time
 import rosgraph.names
 import rospy
 import rospy.impl.simtime
-import tf2_ros
 from rosgraph_msgs.msg import Clock
+from tf2_msgs.msg import TFMessage
 from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
@@ -60,6 +65,9 @@ from .world_api import WorldApi
 from ..errors import UserError
 from ..sim.kinematics import yaw_from_quat
 from .nonblocking_publisher import Backlog, make_nonblocking
+from .packed_messages import PackedClock
+from . import part_times
+from .part_times import TIMES
 from ..sim.pacing import Pacer, check_rtf
 from .robot_topics import RobotTopics
 from .single_instance import refuse_if_running
@@ -73,6 +81,10 @@ WAKE_CHECK = 0.1
 # Sleeps shorter than this (wall s) are plain sleeps, which a request does not cut short (it
 # waits at most this long): at real time every sleep is one, and costs half the CPU of a wait.
 SHORT_SLEEP = 0.025
+# As fast as possible, what the steps make leaves at most this long (wall s) after it is made,
+# a subscriber's messages of that time in one write: a write and a wake-up of the subscriber
+# per message cost more than the physics.
+SEND_GAP = 0.001
 
 
 def _param(name, default, kind, allow_empty=False):
@@ -124,21 +136,25 @@ class SimNode:
     """Converts between the Simulation and ROS messages, and runs the stepping loop."""
 
     def __init__(self, sim: Simulation, real_time_factor: float, paused: bool,
-                 status_period: float):
+                 status_period: float, pub_clock_frequency: float = 1000.0):
         self.sim = sim
         self.pacer = Pacer(real_time_factor)
         self.paused = paused
         self.status_period = status_period
+        # /clock's least wall-time gap (s): Gazebo's ~pub_clock_frequency; 0 = none
+        self.clock_gap = 1.0 / pub_clock_frequency if pub_clock_frequency > 0 else 0.0
+        self._next_clock_wall = -math.inf
+        self.clock_packed = PackedClock()
+        self.part_times_path = part_times.report_path()
         self._requests = queue.Queue()
         self._wake = threading.Event()
         self.stop_requested = False  # set by the SIGINT/SIGTERM handler of main()
-        self.clock_msg = Clock()
         # Every message is written from this loop without a thread switch, and a subscriber
         # that stops reading loses old messages instead of stalling the simulation.
         self.backlog = Backlog()
         self.clock_pub = self._publisher("/clock", Clock)
-        self.tf = tf2_ros.TransformBroadcaster()
-        make_nonblocking(self.tf.pub_tf, self.backlog)
+        # tf2_ros.TransformBroadcaster's publisher (the transforms are packed_messages')
+        self.tf_pub = self._publisher("/tf", TFMessage, queue_size=100)
         self.publishers = {"clock": self._publish_clock}   # the world's outputs
         self.robot_topics = {}                               # robot name -> RobotTopics
         self._topics = []
@@ -165,7 +181,7 @@ class SimNode:
             if name not in self.robot_topics:
                 for warning in robot.warnings:
                     rospy.logwarn("%s: %s", name, warning)
-                self.robot_topics[name] = RobotTopics(robot, self._publisher, self.tf)
+                self.robot_topics[name] = RobotTopics(robot, self._publisher, self.tf_pub)
         self._topics = list(self.robot_topics.values())   # what the loop walks every step
 
     # --- messages --------------------------------------------------------------------------------
@@ -176,6 +192,7 @@ class SimNode:
         tf lookups at the current time never need to extrapolate."""
         if not due:
             return
+        TIMES.switch("other")
         stamp = rospy.Time(*divmod(self.sim.time_ns, 1_000_000_000))
         for robot, name in due:
             if robot is None:
@@ -184,10 +201,17 @@ class SimNode:
                 self.robot_topics[robot.name].publishers[name](stamp)
 
     def _publish_clock(self, stamp) -> None:
-        self.clock_msg.clock = stamp
-        self.clock_pub.publish(self.clock_msg)
         # The sim's own rospy time follows its clock directly (see main: no /clock round trip).
         _set_rostime(stamp)
+        if self.clock_gap:   # Gazebo's throttle, by the wall time the message leaves at
+            pacer = self.pacer
+            wall = pacer.wall_of(self.sim.time) if pacer.rtf > 0 else time.monotonic()
+            if wall < self._next_clock_wall:
+                return
+            self._next_clock_wall = wall + self.clock_gap
+        TIMES.switch("serializing")
+        self.clock_packed.write(stamp.secs, stamp.nsecs)
+        self.clock_pub.publish_packed(self.clock_packed)
 
     # --- input -----------------------------------------------------------------------------------
 
@@ -218,16 +242,18 @@ class SimNode:
             if self.sim.time_ns != before:  # reset_simulation: everyone sees the new time now
                 self.backlog.send_due()      # after what was made before it
                 self.pacer.restart(self.sim.time)
+                self._next_clock_wall = -math.inf
                 self._publish_due([(None, "clock")])
 
     # --- loop ------------------------------------------------------------------------------------
 
     def spin(self) -> None:
         """Step, publish and pace until ROS shuts down."""
-        sim, pacer, backlog = self.sim, self.pacer, self.backlog
+        sim, pacer, backlog, times = self.sim, self.pacer, self.backlog, TIMES
         pacer.restart(sim.time)
         self._publish_due([(None, "clock")])
         next_status = time.monotonic() + self.status_period
+        next_report = next_send = time.monotonic()
         steps = 0
         while True:
             steps += 1
@@ -239,30 +265,45 @@ class SimNode:
                 if self.status_period > 0 and time.monotonic() >= next_status:
                     next_status = time.monotonic() + self.status_period
                     self._log_status()
+                if self.part_times_path and time.monotonic() >= next_report:
+                    next_report = time.monotonic() + 1.0
+                    self._report_part_times()
             if not self._requests.empty():
+                backlog.send_due()   # a caller sees every message made before its answer
                 self._handle_requests()
             if backlog:
                 backlog.flush()
             paced = pacer.rtf > 0  # set_physics_properties may change it at any request
-            if backlog.next_due() is not None:
-                backlog.send_due(time.monotonic() if paced else math.inf)
+            if paced and backlog.next_due() is not None:
+                backlog.send_due(time.monotonic())
             if self.paused:
                 backlog.send_due()
                 self._wake.wait(0.1)
                 self._wake.clear()
                 pacer.restart(sim.time)
                 continue
+            times.switch("physics")
             for topics in self._topics:
                 if topics.command is not None:
                     topics.apply_command()
             due = sim.step()
-            if not paced:
-                self._publish_due(due)
+            if not paced:   # as fast as possible: sent together, once a SEND_GAP
+                if due:
+                    backlog.hold()
+                    self._publish_due(due)
+                    backlog.keep_until(0.0)
+                times.switch("other")
+                if backlog.next_due() is not None:
+                    now = time.monotonic()
+                    if now >= next_send:
+                        backlog.send_due()
+                        next_send = now + SEND_GAP
                 continue
             if due:  # made now, sent when due on the wall clock
                 backlog.hold()
                 self._publish_due(due)
                 backlog.keep_until(pacer.wall_of(sim.time))
+            times.switch("other")
             batch_end = pacer.batch_end(sim.time)
             if batch_end is not None:
                 self._send_on_time_until(batch_end)
@@ -294,6 +335,13 @@ class SimNode:
     def _sleep_until(self, wall_time: float) -> bool:
         """Sleep until the clock reads ``wall_time``: True then; False as soon as a request is
         queued or the node is to stop."""
+        part = TIMES.switch("idle")
+        try:
+            return self._sleep(wall_time)
+        finally:
+            TIMES.switch(part)
+
+    def _sleep(self, wall_time: float) -> bool:
         wake = self._wake
         while True:
             delay = wall_time - time.monotonic()
@@ -307,6 +355,17 @@ class SimNode:
             if delay >= WAKE_CHECK and (self.stop_requested or rospy.is_shutdown()):
                 self.stop_requested = True
                 return False
+
+    def _report_part_times(self) -> None:
+        """The loop's time by part so far, into the file TUTORIAL_TURTLEBOT_PART_TIMES names
+        (part_times; make bench reads it)."""
+        try:
+            with open(self.part_times_path, "w") as f:
+                f.write(TIMES.line(self.sim.time))
+        except OSError as err:
+            rospy.logwarn("gazebo: cannot write the part times to %s: %s; not writing them "
+                          "again", self.part_times_path, err)
+            self.part_times_path = None
 
     def _log_status(self) -> None:
         factor = self.pacer.achieved(self.sim.time)
@@ -360,6 +419,10 @@ def main() -> None:
             raise UserError("parameter ~%s" % err) from None
         paused = _param("paused", False, bool)
         status_period = _param("status_period", 10.0, float)
+        pub_clock_frequency = _param("pub_clock_frequency", 1000.0, float)
+        if not (pub_clock_frequency >= 0 and math.isfinite(pub_clock_frequency)):
+            raise UserError("parameter ~pub_clock_frequency: %r is not a frequency of 0 (no "
+                            "limit) or more Hz" % pub_clock_frequency)
         if config.gui and not os.environ.get("DISPLAY"):
             rospy.logwarn("gazebo: gui:=true but there is no display (DISPLAY is unset): "
                           "running headless")
@@ -380,7 +443,7 @@ def main() -> None:
         spec = sim.camera_spec
         rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
                       math.degrees(spec.hfov), spec.rate, sim.camera.renderer_name)
-    node = SimNode(sim, real_time_factor, paused, status_period)
+    node = SimNode(sim, real_time_factor, paused, status_period, pub_clock_frequency)
     # A restarted master is told again of every topic, service and robot description.
     MasterWatch(lambda: [robot.namespace for robot in list(sim.robots.values())]).start()
 

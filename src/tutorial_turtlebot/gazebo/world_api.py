@@ -52,6 +52,7 @@ from gazebo_msgs.srv import (ApplyBodyWrench, ApplyBodyWrenchResponse, ApplyJoin
                              SetPhysicsPropertiesResponse, SpawnModel, SpawnModelResponse)
 from geometry_msgs.msg import Pose, Twist
 
+from .part_times import TIMES
 from ..sim.physics_properties import OdeConfig, PhysicsProperties
 from ..sim.world_control import RequestError, WorldControl
 
@@ -203,10 +204,13 @@ class WorldApi:
 
     def _publish_states(self, stamp) -> None:
         model_pub, link_pub = self.pubs["model_states"], self.pubs["link_states"]
-        if model_pub.get_num_connections() > 0:
-            model_pub.publish(_states(ModelStates, self.control.model_states()))
-        if link_pub.get_num_connections() > 0:
-            link_pub.publish(_states(LinkStates, self.control.link_states()))
+        for pub, msg_type, states in ((model_pub, ModelStates, self.control.model_states),
+                                      (link_pub, LinkStates, self.control.link_states)):
+            if pub.get_num_connections() > 0:
+                TIMES.switch("building")
+                msg = _states(msg_type, states())
+                TIMES.switch("serializing")
+                pub.publish(msg)
 
     # --- handlers (run in the loop) ----------------------------------------------------------
 

@@ -224,7 +224,7 @@ class SimRobot:
         self.next_output_ns = min((s.next_ns for s in self.schedules.values()),
                                   default=math.inf)
         if "imu" in due:
-            self._sample_imu()
+            self._filter_imu()
         if self.odom_source == "encoders" and ("odom" in due or "joint_states" in due):
             self._update_encoders()
         return due
@@ -262,7 +262,7 @@ class SimRobot:
     def imu(self) -> ImuState:
         """What the IMU reads now (orientation absolute in the world, yaw 0 facing +x)."""
         if self._imu_state_ns != self.time_ns:
-            self._sample_imu(filter_acceleration=False)
+            self._sample_imu()
         return self._imu_state
 
     def camera_pose(self) -> Tuple[np.ndarray, np.ndarray]:
@@ -275,20 +275,28 @@ class SimRobot:
         """(rgb uint8 HxWx3, depth float32 HxW metres or None) seen by the camera now."""
         return self.camera.render(*self.camera_pose(), depth=depth)
 
-    def _sample_imu(self, filter_acceleration: bool = True) -> None:
-        """Read the chassis once at an IMU tick: low-pass the acceleration (from the change of
-        velocity since the last tick) and keep what the IMU reads now. The IMU link is rigidly
-        attached to the chassis without rotation, as on every TurtleBot3."""
+    def _filter_imu(self) -> None:
+        """At an IMU tick: low-pass the acceleration (world frame) from the change of the
+        chassis' velocity since the last tick. The reading itself is worked out when asked for
+        (imu()), unless it has noise: its draws are made at every tick, asked for or not, so
+        the random sequence (shared with the laser) does not depend on who subscribes."""
+        lin, _ = self.body.velocity()
+        last_lin, last_ns = self._imu_velocity
+        if self.time_ns > last_ns:
+            dt = (self.time_ns - last_ns) / NS_PER_S
+            gain = dt / (IMU_ACCEL_TIME_CONSTANT + dt)
+            self._imu_accel = tuple(a + ((v - v0) / dt - a) * gain
+                                    for a, v, v0 in zip(self._imu_accel, lin, last_lin))
+        self._imu_velocity = (lin, self.time_ns)
+        self._imu_state_ns = None
+        if self.imu_plugin and self.imu_plugin.gaussian_noise > 0:
+            self._sample_imu()
+
+    def _sample_imu(self) -> None:
+        """Keep what the IMU reads now, from the chassis and the filtered acceleration. The
+        IMU link is rigidly attached to the chassis without rotation, as on every TurtleBot3."""
         _, orn = self.body.footprint_pose()
-        lin, ang = self.body.velocity()
-        if filter_acceleration:
-            last_lin, last_ns = self._imu_velocity
-            if self.time_ns > last_ns:
-                dt = (self.time_ns - last_ns) / NS_PER_S
-                gain = dt / (IMU_ACCEL_TIME_CONSTANT + dt)
-                self._imu_accel = tuple(a + ((v - v0) / dt - a) * gain
-                                        for a, v, v0 in zip(self._imu_accel, lin, last_lin))
-            self._imu_velocity = (lin, self.time_ns)
+        _, ang = self.body.velocity()
         ax, ay, az = self._imu_accel
         rates = kinematics.to_body(orn, ang)
         accel = kinematics.to_body(orn, (ax, ay, az + GRAVITY))
