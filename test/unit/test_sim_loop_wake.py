@@ -147,3 +147,55 @@ def test_dynamic_reconfigure_says_the_limit():
     rate = next(p for p in physics_config.config_description["parameters"]
                 if p["name"] == "max_update_rate")
     assert "0.01 / time_step" in rate["description"]
+
+
+class ClockPublisher:
+    def __init__(self):
+        self.stamps = []
+
+    def publish_packed(self, packed):
+        self.stamps.append(packed.message().clock.to_nsec())
+
+
+def clock_node(rtf, pub_clock_frequency):
+    """A node whose /clock is recorded; its pace ``rtf`` (0: as fast as possible)."""
+    node = object.__new__(sim_node.SimNode)
+    node.sim = FakeSim(0.0)
+    node.pacer = Pacer(rtf)
+    node.pacer.restart(0.0)
+    node.clock_gap = 1.0 / pub_clock_frequency if pub_clock_frequency > 0 else 0.0
+    node._next_clock_wall = float("-inf")
+    node.clock_packed = sim_node.PackedClock()
+    node.clock_pub = ClockPublisher()
+    return node
+
+
+def tick(node, sim_ns):
+    node.sim.time_ns, node.sim.time = sim_ns, sim_ns / 1e9
+    node._publish_clock(sim_node.rospy.Time(*divmod(sim_ns, 1_000_000_000)))
+
+
+def test_clock_at_most_pub_clock_frequency_a_wall_second_as_fast_as_possible():
+    """Gazebo's ~pub_clock_frequency: 100 ticks of 10 ms of sim time made within a few wall ms
+    give a message per wall ms at most; with no limit (0), every tick."""
+    node = clock_node(0.0, 1000.0)
+    start = time.monotonic()
+    for k in range(100):
+        tick(node, k * 10_000_000)
+    took = time.monotonic() - start
+    assert node.clock_pub.stamps[0] == 0          # the first tick always goes
+    assert len(node.clock_pub.stamps) <= 1 + took / 0.001
+    assert node.clock_pub.stamps == sorted(node.clock_pub.stamps)
+    unlimited = clock_node(0.0, 0.0)
+    for k in range(100):
+        tick(unlimited, k * 10_000_000)
+    assert unlimited.clock_pub.stamps == [k * 10_000_000 for k in range(100)]
+
+
+def test_at_real_time_the_clock_limit_never_bites():
+    """At real time the gap is judged by when each tick is due on the wall clock (10 ms
+    apart), not when it was made (a batch ahead): every tick is sent."""
+    node = clock_node(1.0, 1000.0)
+    for k in range(50):
+        tick(node, k * 10_000_000)
+    assert len(node.clock_pub.stamps) == 50
