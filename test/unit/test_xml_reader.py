@@ -3,6 +3,7 @@ URDF and SDF alike, and a spawn that parses its description exactly once."""
 import os
 
 import pytest
+from xml.etree import ElementTree
 
 from tutorial_turtlebot.errors import UrdfError, UserError, WorldError
 from tutorial_turtlebot.sim import xml_reader
@@ -83,6 +84,12 @@ def parses(monkeypatch):
         calls.append(source)
         return real(data, source, *args, **kwargs)
     monkeypatch.setattr(xml_reader, "parse", counting)
+
+    def elementtree_parse(source, *args, **kwargs):   # any reader going round xml_reader
+        calls.append("ElementTree.parse %s" % source)
+        return real_elementtree_parse(source, *args, **kwargs)
+    real_elementtree_parse = ElementTree.parse
+    monkeypatch.setattr(ElementTree, "parse", elementtree_parse)
     return calls
 
 

@@ -7,6 +7,7 @@ on a TurtleBot3: on the floor between the wheels, x forward). pybullet places a 
 centre of mass, so every pose here is converted to and from the root link.
 Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
+import copy
 import os
 import tempfile
 from typing import Dict, List, Optional, Sequence, Tuple
@@ -16,6 +17,7 @@ import numpy as np
 
 from . import gui_window
 from .bullet import pybullet, quiet_output
+from .kinematics import Pose
 from .camera import disable_egl, enable_egl
 from .urdf_file import RobotDescription
 from .urdf_meshes import bullet_meshes, urdf_text
@@ -24,7 +26,6 @@ from .world_sdf import World
 from ..errors import UserError
 
 
-Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]
 
 GRAVITY = 9.8                    # m/s^2, Gazebo's default
 # Each robot has a collision group bit of its own: it collides with everything, and its laser's
@@ -46,16 +47,20 @@ BRAKE_MOVED = 0.5
 SPAWN_CLEARANCE = 0.001          # m: drop the robot from just above the floor
 
 
-def _urdf_for_bullet(path: str) -> str:
-    """A copy of the URDF in which bare frames (links with no inertial) weigh next to nothing,
-    and whose meshes are the Wavefront files of ``urdf_meshes.bullet_meshes``.
+def _urdf_for_bullet(description: RobotDescription) -> str:
+    """A copy of the description's URDF in which bare frames (links with no inertial) weigh
+    next to nothing, and whose meshes are the Wavefront files of ``urdf_meshes.bullet_meshes``.
+    It is made from the tree the description was read from (not parsed again), else from its
+    file.
 
     pybullet would give each bare frame 1 kg; merged into the chassis that would triple a
     Burger's mass. Returns the path of a temporary file the caller deletes.
     """
-    tree = ElementTree.parse(path)
-    bullet_meshes(tree.getroot(), os.path.dirname(os.path.abspath(path)))
-    for link in tree.getroot().iter("link"):
+    path = description.path
+    root = (copy.deepcopy(description.root) if description.root is not None
+            else ElementTree.parse(path).getroot())
+    bullet_meshes(root, os.path.dirname(os.path.abspath(path)))
+    for link in root.iter("link"):
         if link.find("inertial") is None:
             inertial = ElementTree.SubElement(link, "inertial")
             ElementTree.SubElement(inertial, "mass", value="1e-6")
@@ -63,7 +68,7 @@ def _urdf_for_bullet(path: str) -> str:
                                    ixy="0", ixz="0", iyz="0")
     fd, out = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_")
     with os.fdopen(fd, "w", encoding="utf-8") as f:   # one element a line (urdf_text)
-        f.write(urdf_text(tree.getroot()))
+        f.write(urdf_text(root))
     return out
 
 
@@ -140,7 +145,7 @@ class RobotBody:
         # rays of this robot's sensors: the world and every other robot
         self.ray_mask = (WORLD_COLLISION_GROUP | ROBOT_GROUPS) & ~self.collision_bit
         try:
-            self.robot = self._load(description.path)
+            self.robot = self._load(description)
         except Exception:
             physics.give_back_robot_bit(self.collision_bit)
             raise
@@ -155,11 +160,11 @@ class RobotBody:
         self.spawn_pose: Pose = ((x, y, z + SPAWN_CLEARANCE), tuple(orn))
         self.reset_robot()
 
-    def _load(self, path: Optional[str] = None) -> int:
-        """Load the URDF at ``path`` (kept as text for rebuild), or again that text."""
+    def _load(self, description: Optional[RobotDescription] = None) -> int:
+        """Load the description's URDF (kept as text for rebuild), or again that text."""
         cid = self.client
-        if path is not None:
-            tmp = _urdf_for_bullet(path)
+        if description is not None:
+            tmp = _urdf_for_bullet(description)
             with open(tmp, encoding="utf-8") as f:
                 self._bullet_urdf = f.read()
             os.unlink(tmp)
