@@ -188,8 +188,9 @@ class SimNode:
 
     def _publish_due(self, due) -> None:
         """Publish what is due at this step, all with this step's stamp. /clock runs on its own
-        fixed rate; a stamp may be ahead of it by less than one clock period, never behind, so
-        tf lookups at the current time never need to extrapolate."""
+        fixed rate; a stamp may be ahead of it by less than one clock period (or, as fast as
+        possible, than ~pub_clock_frequency's wall gap), never behind, so tf lookups at the
+        current time never need to extrapolate."""
         if not due:
             return
         TIMES.switch("other")
