@@ -83,14 +83,23 @@ WAKE_CHECK = 0.1
 SHORT_SLEEP = 0.025
 # As fast as possible, what the steps make leaves at most this long (wall s) after it is made,
 # a subscriber's messages of that time in one write: a write and a wake-up of the subscriber
-# per message cost more than the physics.
-SEND_GAP = 0.001
+# per message cost more than the physics. What clients wait for, step by step (a scan, a camera
+# frame), leaves at once, with everything made before it.
+SEND_GAP = 0.002
+SEND_AT_ONCE = ("scan", "camera")
+
+
+_private_params = None   # the node's private parameters, read from the master once
 
 
 def _param(name, default, kind, allow_empty=False):
     """A private param converted to ``kind`` (float, int, bool, str); UserError if it cannot be.
-    With ``allow_empty`` an empty value gives None."""
-    value = rospy.get_param("~" + name, default)
+    With ``allow_empty`` an empty value gives None. All of them come in one master call."""
+    global _private_params
+    if _private_params is None:
+        params = rospy.get_param("~", {})
+        _private_params = params if isinstance(params, dict) else {}
+    value = _private_params.get(name, default)
     if allow_empty and (value is None or (isinstance(value, str) and value.strip() == "")):
         return None
     try:
@@ -289,14 +298,16 @@ class SimNode:
                     topics.apply_command()
             due = sim.step()
             if not paced:   # as fast as possible: sent together, once a SEND_GAP
+                at_once = False
                 if due:
                     backlog.hold()
                     self._publish_due(due)
                     backlog.keep_until(0.0)
+                    at_once = any(name in SEND_AT_ONCE for _, name in due)
                 times.switch("other")
                 if backlog.next_due() is not None:
                     now = time.monotonic()
-                    if now >= next_send:
+                    if at_once or now >= next_send:
                         backlog.send_due()
                         next_send = now + SEND_GAP
                 continue
