@@ -81,6 +81,11 @@ WAKE_CHECK = 0.1
 # Sleeps shorter than this (wall s) are plain sleeps, which a request does not cut short (it
 # waits at most this long): at real time every sleep is one, and costs half the CPU of a wait.
 SHORT_SLEEP = 0.025
+# The longest (wall s) the loop keeps the GIL while another thread of the node waits for it:
+# rospy's threads (a subscriber's handshake, a service call, the master's calls) take their
+# turn this soon, as fast as possible too, when the loop no longer lets go of the GIL at every
+# socket write (Python's default: 5 ms).
+GIL_SWITCH_INTERVAL = 0.0005
 # As fast as possible, what the steps make leaves at most this long (wall s) after it is made,
 # a subscriber's messages of that time in one write: a write and a wake-up of the subscriber
 # per message cost more than the physics. What clients wait for, step by step (a scan, a camera
@@ -413,6 +418,7 @@ def main() -> None:
     # rospy's own SIGINT handler shuts ROS down from inside whatever the loop is doing (often a
     # publish, holding its locks) and could hang there; here the signal only asks the loop to
     # stop, and the loop shuts ROS down when it is between steps.
+    sys.setswitchinterval(GIL_SWITCH_INTERVAL)
     rospy.init_node("gazebo", disable_signals=True)
     # Before the first topic and service: a client that stalls in its handshake (or is not a
     # ROS client at all) must not keep the others out.
