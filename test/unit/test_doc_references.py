@@ -9,8 +9,8 @@ worlds/, test/, tools/, bench/, ...) for:
 - dotted module names (``tutorial_turtlebot.lab.graph_node``),
 - the numbered sections of ``doc/turtlebot3.md`` that a comment cites (``doc/turtlebot3.md 4.2``),
 
-and fails on any that does not resolve, on names of notes kept outside the repository, and on
-issue numbers (say what the thing is instead). Also: CHANGELOG.rst's newest version is
+and fails on any that does not resolve, on a relative path that leads out of the repository,
+and on issue numbers (say what the thing is instead). Also: CHANGELOG.rst's newest version is
 package.xml's. No ROS master.
 """
 import ast
@@ -31,9 +31,8 @@ ROOT_DIRS = ("doc", "src", "test", "tools", "bench", "urdf", "worlds", "launch",
 SCANNED_SUFFIXES = (".py", ".md", ".rst", ".launch", ".test", ".urdf", ".world", ".sdf", ".xml",
                     ".sh", ".txt", ".in", ".cmake", ".rviz", ".cfg", ".config", ".xacro")
 SCANNED_NAMES = ("Makefile", "CMakeLists.txt", "package.xml", "run")
-# Notes that lived outside the repository; their facts are in doc/ now.
-OUT_OF_REPO = ("tb3_facts", "gazebo_api.md", "platforms_and_graph", "lab_handout", "SPEC.md",
-               "STYLE.md", "../shared")
+# A relative path that may climb out of the folder it is written in.
+UP_PATH = re.compile(r"(?<![\w.])((?:\.\./)+[\w./-]*[\w/])")
 ISSUE = re.compile(r"\b[Ii]ssues?\s*#?\d+|\(issue\b|\bissue\s+#|(?<![\w/])#\d+\b(?!\s*[-:]?\s*\w*\s*\])")
 ROOT_PATH = re.compile(r"(?<![\w/.$@{:-])((?:%s)/[\w./-]*[\w/])" % "|".join(ROOT_DIRS))
 MD_LINK = re.compile(r"\]\(([^)\s]+)\)")
@@ -133,9 +132,10 @@ def problems_in(root, name, text, basenames, sections):
     here = os.path.dirname(name)
     for number, line in enumerate(text.splitlines(), 1):
         where = "%s:%d" % (name, number)
-        for word in OUT_OF_REPO:
-            if word in line:
-                found.append("%s: names %r, which is not in the repository" % (where, word))
+        for match in UP_PATH.finditer(line):
+            target = os.path.normpath(os.path.join(here, match.group(1)))
+            if target == ".." or target.startswith(".." + os.sep):
+                found.append("%s: %s leads out of the repository" % (where, match.group(1)))
         for match in ISSUE.finditer(line):
             found.append("%s: issue number %r: say what it is instead" % (where, match.group(0)))
     readable = prose(name, text)
@@ -192,7 +192,7 @@ def all_problems(root=ROOT):
     found = []
     for name in files:
         if name == os.path.relpath(__file__, ROOT).replace(os.sep, "/"):
-            continue   # this file names the forbidden words on purpose
+            continue   # this file plants bad references on purpose
         with open(os.path.join(root, name), encoding="utf-8", errors="replace") as handle:
             found += problems_in(root, name, handle.read(), basenames, sections)
     return found
@@ -222,12 +222,12 @@ GOOD = {
 
 
 @pytest.mark.parametrize("bad, expected", [
-    ("# numbers from tb3_facts.md 2.4\n", "not in the repository"),
+    ("# numbers from notes.md 2.4\n", "not in the repository"),
     ("# see doc/gazebo_node.md\n", "doc/gazebo_node.md does not exist"),
     ('"""The lab fixes (issue 13)."""\n', "issue number"),
     ("# as issue #7 asked\n", "issue number"),
     ("# the rows of Issue 11\n", "issue number"),
-    ("# see SPEC.md\n", "not in the repository"),
+    ("# the rules in ../../../../notes/rules.txt\n", "leads out of the repository"),
     ("# see world_api_helpers.py for the rules\n", "no such file"),
     ("# the arena, doc/turtlebot3.md 4.3\n", "no section 4.3"),
     ("# tutorial_turtlebot.sim.nowhere is gone\n", None),

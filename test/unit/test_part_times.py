@@ -31,3 +31,11 @@ def test_the_report_line_reads_back_with_the_running_part_included():
     assert set(parts) == set(PARTS)
     assert parts["sensors"] >= 0.0095           # still running, yet counted
     assert times.totals["sensors"] == 0.0       # the line does not end the part
+
+
+def test_run_counts_an_action_in_its_part_and_goes_back():
+    times = PartTimes()
+    times.switch("physics")
+    assert times.run("sending", lambda seconds: time.sleep(seconds) or "sent", 0.01) == "sent"
+    assert times.part == "physics"
+    assert times.totals["sending"] >= 0.0095

@@ -114,11 +114,7 @@ class NonBlockingConnection:
     def write_data(self, data: bytes) -> bool:
         """Send one serialized message or keep it for later; never blocks. Raises
         TransportTerminated once the subscriber has gone (rospy then drops the connection)."""
-        part = TIMES.switch("sending")
-        try:
-            return self._write(data)
-        finally:
-            TIMES.switch(part)
+        return TIMES.run("sending", self._write, data)
 
     def _write(self, data: bytes) -> bool:
         held = self._backlog.held

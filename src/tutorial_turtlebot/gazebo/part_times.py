@@ -35,6 +35,14 @@ class PartTimes:
         self.part, self._since = part, now
         return previous
 
+    def run(self, part: str, action, *args):
+        """``action(*args)`` counted in ``part``; the part before it runs on afterwards."""
+        previous = self.switch(part)
+        try:
+            return action(*args)
+        finally:
+            self.switch(previous)
+
     def line(self, sim_time: float) -> str:
         """``sim_s part=seconds ...`` of everything so far (the running part included)."""
         totals = dict(self.totals)

@@ -352,11 +352,7 @@ class SimNode:
     def _sleep_until(self, wall_time: float) -> bool:
         """Sleep until the clock reads ``wall_time``: True then; False as soon as a request is
         queued or the node is to stop."""
-        part = TIMES.switch("idle")
-        try:
-            return self._sleep(wall_time)
-        finally:
-            TIMES.switch(part)
+        return TIMES.run("idle", self._sleep, wall_time)
 
     def _sleep(self, wall_time: float) -> bool:
         wake = self._wake

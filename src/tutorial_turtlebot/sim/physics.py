@@ -50,16 +50,13 @@ SPAWN_CLEARANCE = 0.001          # m: drop the robot from just above the floor
 def _urdf_for_bullet(description: RobotDescription) -> str:
     """A copy of the description's URDF in which bare frames (links with no inertial) weigh
     next to nothing, and whose meshes are the Wavefront files of ``urdf_meshes.bullet_meshes``.
-    It is made from the tree the description was read from (not parsed again), else from its
-    file.
+    It is made from the tree the description was read from (not parsed again).
 
     pybullet would give each bare frame 1 kg; merged into the chassis that would triple a
     Burger's mass. Returns the path of a temporary file the caller deletes.
     """
-    path = description.path
-    root = (copy.deepcopy(description.root) if description.root is not None
-            else ElementTree.parse(path).getroot())
-    bullet_meshes(root, os.path.dirname(os.path.abspath(path)))
+    root = copy.deepcopy(description.root)
+    bullet_meshes(root, os.path.dirname(os.path.abspath(description.path)))
     for link in root.iter("link"):
         if link.find("inertial") is None:
             inertial = ElementTree.SubElement(link, "inertial")
