@@ -6,9 +6,13 @@ Each figure is the median of ``--runs`` runs (default 3). Run from a shell where
 master on a free port, so nothing else on the machine is disturbed.
 
 Measured (Burger in turtlebot3_world unless said):
-  start-up          roslaunch sim.launch (roscore included) -> first /scan, wall s
+  start-up          roslaunch sim.launch (roscore included) -> first /scan, wall s; floor:
+                    roslaunch of a launch file with one parameter and no node -> the
+                    parameter set (roslaunch's and roscore's own start-up)
   real time         real_time_factor 1, every sensor subscribed from another process:
-                    achieved factor, sim CPU (% of one core), sim memory (RSS, MB)
+                    achieved factor, sim CPU (% of one core), sim memory (RSS, MB); floor:
+                    Simulation.step paced as the node paces it, no ROS (alone; with every
+                    sensor computed): CPU
   jitter            the same: per topic, how far the gap between two arrivals differs from
                     the gap between their stamps (p50, p99, max in ms; bench/jitter.py)
   fast              real_time_factor 0, every sensor subscribed / only /odom: achieved factor;
@@ -16,10 +20,14 @@ Measured (Burger in turtlebot3_world unless said):
                     (gazebo/part_times.py): physics (stepping), sensors (rays, IMU, odometry,
                     wheels, camera), building (genpy messages filled), serializing (bytes
                     made), sending (socket writes), other (requests, pacing, the loop)
-  physics bound     the same world and robot stepped by pybullet with no ROS (and no sensors)
+  physics bound     the same world and robot stepped by pybullet with no ROS (and no sensors),
+                    measured just before and just after each fast run; ceilings: what the node
+                    could reach if ROS cost nothing (Simulation.step alone; with every sensor
+                    computed), as shares of the bound
   world API         every sensor and /gazebo/model_states subscribed (CPU at real time, factor
                     as fast as possible); spawn and delete round trips; stage 1 with a
-                    turtlebot3_dqn-style client: environment steps per wall second
+                    turtlebot3_dqn-style client: environment steps per wall second; floor:
+                    the same client's steps against a bare 1 kHz /scan node (scan_source.py)
   scaling           real_time_factor 0, 1 / 4 / 8 subscribers to /scan: achieved factor
   meshes            turtlebot3_world as Gazebo users have it (test/fixtures: the world file that
                     includes model://turtlebot3_world, whose walls and hexagons are Collada
@@ -308,19 +316,160 @@ def measure_stage_client(seconds=20.0):
         run.stop()
 
 
-def physics_bound(seconds=20.0) -> float:
-    """Real-time factor of the Simulation stepped with no ROS and no sensors."""
+def step_outputs(sim, due) -> None:
+    """Compute every output of ``due`` (Simulation.step's list) as the node does for a
+    subscriber: scan, odom, imu, joint_states (world outputs such as the clock cost nothing)."""
+    for robot, name in due:
+        if robot is not None:
+            getattr(robot, name)()
+
+
+def sim_bounds(wall_seconds=6.0, rounds=3):
+    """Real-time factors, no ROS, Burger in turtlebot3_world standing at its spawn with the
+    brake on, as in the fast runs (nothing sends cmd_vel there): (pybullet's step alone,
+    Simulation.step (the drive, IMU filter and schedules too), Simulation.step with every output
+    computed as it falls due). The last two are what the node could reach with ROS costing
+    nothing: the ceilings under the only-/odom and every-sensor rows. The three take turns in
+    ``rounds`` rounds over ``wall_seconds`` in all, so that a drift of the machine's speed
+    falls on each alike."""
     from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
     sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
     try:
-        sim.command(0.1, 0.2)
-        steps = int(seconds / sim.config.time_step)
-        t0 = time.perf_counter()
-        for _ in range(steps):
-            sim.physics.step()
-        return seconds / (time.perf_counter() - t0)
+        for _ in range(400):   # 1 s of sim time: settled on its wheels, the brake on
+            sim.step()
+        runs = (lambda: sim.physics.step(), lambda: sim.step(),
+                lambda: step_outputs(sim, sim.step()))
+        sim_s, wall_s = [0.0] * len(runs), [0.0] * len(runs)
+        slot = wall_seconds / (rounds * len(runs))
+        for _ in range(rounds):
+            for k, run in enumerate(runs):
+                t0 = time.perf_counter()
+                while time.perf_counter() - t0 < slot:
+                    for _ in range(80):   # 0.2 s of sim time: whole scan periods
+                        run()
+                    sim_s[k] += 80 * sim.config.time_step
+                wall_s[k] += time.perf_counter() - t0
+        return tuple(s / w for s, w in zip(sim_s, wall_s))
     finally:
         sim.close()
+
+
+def paced_floor(seconds=8.0):
+    """(CPU % of one core: physics alone, physics and every sensor) of the Simulation paced at
+    real time as the node paces it (Pacer.MIN_SLEEP of sim time stepped at once, then a sleep),
+    with no ROS: the floor under the real-time CPU row on this machine."""
+    from tutorial_turtlebot.sim.pacing import Pacer
+    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+    sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
+    try:
+        batch = int(round(Pacer.MIN_SLEEP / sim.config.time_step))
+        cpu = []
+        for sensors in (False, True):
+            wall0, cpu0 = time.monotonic(), time.process_time()
+            while time.monotonic() - wall0 < seconds:
+                start = time.monotonic()
+                for _ in range(batch):
+                    due = sim.step()
+                    if sensors:
+                        step_outputs(sim, due)
+                time.sleep(max(0.0, start + Pacer.MIN_SLEEP - time.monotonic()))
+            cpu.append(100.0 * (time.process_time() - cpu0) / (time.monotonic() - wall0))
+        return tuple(cpu)
+    finally:
+        sim.close()
+
+
+class BareMaster:
+    """roslaunch of a launch file that sets one parameter and starts no node, on its own port:
+    roslaunch's and roscore's own start-up, and a master for helpers that need no sim."""
+
+    def __init__(self):
+        import tempfile
+        self.port = free_port()
+        self.env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % self.port)
+        fd, self.launch_file = tempfile.mkstemp(suffix=".launch", prefix="bench_bare_")
+        with os.fdopen(fd, "w") as f:
+            f.write('<launch><param name="/bench_ready" value="1"/></launch>\n')
+        self.proc = None
+
+    def start(self, timeout=30.0) -> float:
+        """Start it; the wall s until the master answers with the parameter set."""
+        import xmlrpc.client
+        t0 = time.time()
+        self.proc = subprocess.Popen(["roslaunch", "-p", str(self.port), self.launch_file],
+                                     env=self.env, stdout=subprocess.DEVNULL,
+                                     stderr=subprocess.DEVNULL, start_new_session=True)
+        master = xmlrpc.client.ServerProxy("http://localhost:%d" % self.port)
+        while time.time() - t0 < timeout:
+            try:
+                if master.getParam("/bench", "/bench_ready")[0] == 1:
+                    return time.time() - t0
+            except OSError:
+                pass
+            time.sleep(0.002)
+        raise RuntimeError("roslaunch set no parameter within %g s" % timeout)
+
+    def stop(self):
+        if self.proc is not None and self.proc.poll() is None:
+            os.killpg(self.proc.pid, signal.SIGINT)
+            try:
+                self.proc.wait(15)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+        os.unlink(self.launch_file)
+
+
+def measure_roslaunch_floor() -> float:
+    """Wall s from roslaunch's start to its master holding a parameter, with no node: the part
+    of the start-up row that is roslaunch and roscore alone."""
+    bare = BareMaster()
+    try:
+        return bare.start()
+    finally:
+        bare.stop()
+
+
+def measure_stage_client_floor(seconds=10.0) -> float:
+    """Steps per wall second of stage_client.py's step (publish an action, wait_for_message for
+    the next scan) against bench/scan_source.py, a bare rospy node publishing 24-ray scans at
+    1 kHz of wall time, with no sim: how fast such a client can step at all."""
+    bare = BareMaster()
+    procs = []
+    try:
+        bare.start()
+        for args in (["scan_source.py"], ["stage_client.py", "%g" % seconds, "--steps-only"]):
+            procs.append(subprocess.Popen(
+                [sys.executable, os.path.join(HERE, args[0])] + args[1:], env=bare.env,
+                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
+                start_new_session=True))
+        for line in procs[1].stdout:
+            try:
+                return float(line)
+            except ValueError:
+                continue
+        raise RuntimeError("stage_client.py --steps-only said nothing")
+    finally:
+        for proc in procs:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGINT)
+            proc.wait()
+        bare.stop()
+
+
+def measure_fast():
+    """One run of the as-fast-as-possible rows: {"all", "odom": achieved factors with every
+    sensor / only /odom subscribed; "parts": the loop's ms per sim s by part (every sensor);
+    "bound", "stepped", "with_sensors": sim_bounds' factors, the mean of a measure just before
+    and one just after, so that the machine's drift in between falls on both sides}."""
+    before = sim_bounds()
+    parts = {}
+    result = {"all": measure_running(0, ALL_SENSORS, parts=parts)[0],
+              "odom": measure_running(0, ["/odom"])[0], "parts": parts}
+    after = sim_bounds()
+    for k, name in enumerate(("bound", "stepped", "with_sensors")):
+        result[name] = (before[k] + after[k]) / 2
+    return result
 
 
 ROBOT_SENSORS = ("scan", "odom", "imu", "joint_states")
@@ -472,9 +621,7 @@ def robots_bound(count, world="empty", poses=None, wall_seconds=1.5):
                 for _ in range(100):
                     due = sim.step()
                     if sensors:
-                        for robot, name in due:
-                            if robot is not None:
-                                getattr(robot, name)()
+                        step_outputs(sim, due)
             factors.append((sim.time - start_sim) / (time.perf_counter() - t0))
         return tuple(factors)
     finally:
@@ -563,6 +710,8 @@ def main():
         row("start-up: roslaunch (with roscore) -> first /scan",
             "%.2f" % median([measure_startup() for _ in range(args.runs)]), "s",
             TARGETS["startup"])
+        row("  floor: roslaunch (with roscore), no node -> a parameter set",
+            "%.2f" % median([measure_roslaunch_floor() for _ in range(args.runs)]), "s")
     if "realtime" in only:
         rt = [measure_running(1.0, ALL_SENSORS) for _ in range(args.runs)]
         row("real time, every sensor subscribed: achieved factor",
@@ -571,6 +720,11 @@ def main():
             "%.1f" % median([r[1] for r in rt]), "% core", TARGETS["rt_cpu"])
         row("real time, every sensor subscribed: sim memory (RSS)",
             "%.0f" % median([r[2] for r in rt]), "MB", TARGETS["rt_mem"])
+        floors = [paced_floor() for _ in range(args.runs)]
+        row("  floor: Simulation.step paced as the node paces it, no ROS: CPU",
+            "%.1f" % median([f[0] for f in floors]), "% core")
+        row("  floor: the same with every sensor computed: CPU",
+            "%.1f" % median([f[1] for f in floors]), "% core")
     if "jitter" in only:
         jitter = [measure_jitter() for _ in range(args.runs)]
         for topic in JITTER_TOPICS:
@@ -578,13 +732,12 @@ def main():
                 " / ".join("%.1f" % median([j[topic][k] for j in jitter if topic in j])
                            for k in range(3)), "ms", "each <= 5 ms of its moment")
     if "fast" in only:
-        fast_parts = [{} for _ in range(args.runs)]
-        fast_all = median([measure_running(0, ALL_SENSORS, parts=p)[0] for p in fast_parts])
-        row("as fast as possible, every sensor subscribed", "%.1f" % fast_all, "x",
-            TARGETS["fast_all"])
+        fast = [measure_fast() for _ in range(args.runs)]
+        row("as fast as possible, every sensor subscribed",
+            "%.1f" % median([f["all"] for f in fast]), "x", TARGETS["fast_all"])
         for part in PART_ROWS:
             row("  the same: the loop's wall time per sim second, %s" % part,
-                "%.1f" % median([p[part] for p in fast_parts]), "ms")
+                "%.1f" % median([f["parts"][part] for f in fast]), "ms")
     if "world" in only:
         with_states = ALL_SENSORS + ["/gazebo/model_states"]
         rt_states = [measure_running(1.0, with_states) for _ in range(args.runs)]
@@ -600,15 +753,23 @@ def main():
         row("stage 1, DQN-style client stepping once per scan (24 samples, max speed)",
             "%.1f" % median([measure_stage_client() for _ in range(args.runs)]), "steps/s",
             TARGETS["stage"])
+        row("  floor: the same client's steps against a bare 1 kHz /scan node, no sim",
+            "%.1f" % median([measure_stage_client_floor() for _ in range(args.runs)]),
+            "steps/s")
     if "fast" in only:
-        fast_odom = median([measure_running(0, ["/odom"])[0] for _ in range(args.runs)])
-        row("as fast as possible, only /odom subscribed", "%.1f" % fast_odom, "x")
-        bound = median([physics_bound() for _ in range(args.runs)])
-        row("physics bound: pybullet alone, no ROS, no sensors", "%.1f" % bound, "x")
-        row("  fast (every sensor) / physics bound", "%.2f" % (fast_all / bound), "",
-            TARGETS["fast_all_bound"])
-        row("  fast (only /odom) / physics bound", "%.2f" % (fast_odom / bound), "",
+        row("as fast as possible, only /odom subscribed",
+            "%.1f" % median([f["odom"] for f in fast]), "x")
+        row("physics bound: pybullet alone, no ROS, no sensors (before and after each run)",
+            "%.1f" % median([f["bound"] for f in fast]), "x")
+        row("  fast (every sensor) / physics bound",
+            "%.2f" % median([f["all"] / f["bound"] for f in fast]), "", TARGETS["fast_all_bound"])
+        row("  fast (only /odom) / physics bound",
+            "%.2f" % median([f["odom"] / f["bound"] for f in fast]), "",
             TARGETS["fast_odom_bound"])
+        row("  ceiling: Simulation.step, no ROS, no sensors / physics bound",
+            "%.2f" % median([f["stepped"] / f["bound"] for f in fast]), "")
+        row("  ceiling: Simulation.step and every sensor, no ROS / physics bound",
+            "%.2f" % median([f["with_sensors"] / f["bound"] for f in fast]), "")
     if "subscribers" in only:
         for n in (1, 4, 8):
             row("as fast as possible, %d subscriber(s) to /scan" % n,

@@ -3,8 +3,10 @@
 turtlebot3_dqn's environment is (one step = publish an action, then wait for the next scan;
 reset_simulation and a goal spawned with spawn_sdf_model, found in /gazebo/model_states).
 
-    stage_client.py SECONDS
+    stage_client.py SECONDS [--steps-only]
 Runs episodes of 50 steps for SECONDS of wall time and prints ``steps_per_wall_second``.
+``--steps-only``: only the steps (publish an action, wait for the next scan), no services and
+no /gazebo/model_states, so it runs against any /scan publisher (bench/scan_source.py).
 """
 import math
 import sys
@@ -66,9 +68,26 @@ class Stage:
         return rospy.wait_for_message("scan", LaserScan, timeout=5)
 
 
+def steps_only(seconds):
+    """Steps per wall second of Stage.step's publish-and-wait alone, for ``seconds``."""
+    cmd = rospy.Publisher("cmd_vel", Twist, queue_size=5)
+    rospy.wait_for_message("scan", LaserScan, timeout=30)
+    steps, start = 0, time.monotonic()
+    while time.monotonic() - start < seconds:
+        twist = Twist()
+        twist.linear.x, twist.angular.z = 0.15, ACTIONS[steps % len(ACTIONS)]
+        cmd.publish(twist)
+        rospy.wait_for_message("scan", LaserScan, timeout=5)
+        steps += 1
+    return steps / (time.monotonic() - start)
+
+
 def main():
     seconds = float(sys.argv[1])
     rospy.init_node("bench_stage_client", anonymous=True, disable_signals=True)
+    if "--steps-only" in sys.argv[2:]:
+        print("%.1f" % steps_only(seconds), flush=True)
+        return
     stage = Stage()
     stage.reset()
     stage.respawn_goal(0.6, 0.0)

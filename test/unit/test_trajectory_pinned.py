@@ -25,11 +25,12 @@ READINGS = {
 PINNED = "8da7cf2909c4ef705fa0864af30308000a5083c49ecc832057506f4ec82e957d"
 
 
-def trajectory_digest():
+def trajectory_digest(ray_threads=1):
     """sha256 over the Burger's world pose (7 float64) after every step and every reading
     that falls due (scan ranges as float32, IMU, odometry and wheels as float64), in
-    turtlebot3_world from its default spawn."""
+    turtlebot3_world from its default spawn; the rays cast on ``ray_threads`` threads."""
     sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
+    sim.physics.ray_threads = ray_threads
     digest = hashlib.sha256()
     try:
         for step in range(len(COMMANDS) * STEPS_PER_COMMAND):
@@ -55,6 +56,11 @@ def test_the_same_commands_give_the_same_trajectory_to_the_last_bit():
     assert digest == PINNED, (
         "the trajectory changed (the Burger ended at x %.9f y %.9f); new digest %s"
         % (position[0], position[1], digest))
+
+
+def test_rays_cast_on_two_threads_give_the_same_readings_to_the_last_bit():
+    """As fast as possible the node casts a scan's rays on two threads (FAST_RAY_THREADS)."""
+    assert trajectory_digest(ray_threads=2)[0] == PINNED
 
 
 def test_the_digest_sees_a_change_of_one_command():

@@ -6,8 +6,9 @@ still reading the launch file, so a second sim.launch stops before it changes an
 first. Bad arguments, or a running simulator: one line on stderr, exit status 2."""
 import sys
 
-from ..errors import UserError
-from ..sim.urdf_file import read_urdf, urdf_path
+from ..errors import UrdfError, UserError
+from ..sim import xml_reader
+from ..sim.robot_models import urdf_path
 from .single_instance import refuse_if_running
 
 USAGE = ("usage: robot_description MODEL [CAMERA] [--new-sim]  (MODEL: burger, waffle, "
@@ -19,7 +20,9 @@ def description_text(model: str, camera: str = "false") -> str:
     if camera.lower() not in ("true", "false", "", "auto"):
         raise UserError("camera must be true, false or auto (the URDF's), got %r" % camera)
     path = urdf_path(model, camera.lower() == "true")
-    read_urdf(path)  # a broken file is named here, not deep inside robot_state_publisher
+    # a file that is not XML is named here, not deep inside robot_state_publisher; the sim
+    # checks the rest. (No URDF reader here: it needs numpy, 0.1 s of every start-up.)
+    xml_reader.parse_file(path, "URDF file", UrdfError)
     with open(path, encoding="utf-8") as f:
         return f.read()
 

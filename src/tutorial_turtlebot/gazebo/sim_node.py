@@ -92,6 +92,9 @@ GIL_SWITCH_INTERVAL = 0.0005
 # frame), leaves at once, with everything made before it.
 SEND_GAP = 0.002
 SEND_AT_ONCE = ("scan", "camera")
+# As fast as possible, pybullet casts a laser's rays on this many threads (WorldPhysics.
+# ray_threads): the same hits, a 360-ray scan in about 60 % of the wall time.
+FAST_RAY_THREADS = 2
 
 
 _private_params = None   # the node's private parameters, read from the master once
@@ -289,6 +292,9 @@ class SimNode:
             if backlog:
                 backlog.flush()
             paced = pacer.rtf > 0  # set_physics_properties may change it at any request
+            # as fast as possible a scan's rays use the second core too (the wall time is what
+            # counts); at a pace, one thread (the CPU is what counts)
+            sim.physics.ray_threads = 1 if paced else FAST_RAY_THREADS
             if paced and backlog.next_due() is not None:
                 backlog.send_due(time.monotonic())
             if self.paused:

@@ -6,9 +6,11 @@ which URDF file each model is. Units: m/s, rad/s.
 """
 import re
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Optional, Tuple
 
 from ..errors import ModelError
+from .package_data import data_dir
 
 
 @dataclass(frozen=True)
@@ -43,6 +45,15 @@ def get_model(name: str) -> ModelSpec:
     except (KeyError, TypeError):
         raise ModelError("unknown TurtleBot3 model %r: valid models are %s"
                          % (name, ", ".join(MODEL_NAMES))) from None
+
+
+def urdf_path(model_name: str, with_camera: bool = False) -> str:
+    """Path of the URDF shipped for a TurtleBot3 model. ``with_camera`` on a model that carries no
+    camera (burger) gives its AutoRace variant; an unknown model raises ModelError."""
+    spec = get_model(model_name)
+    if with_camera and not spec.carries_camera:
+        return str(Path(data_dir("urdf")) / ("turtlebot3_%s_for_autorace.urdf" % spec.name))
+    return str(Path(data_dir("urdf")) / spec.urdf_name)
 
 
 def model_limits(name: str) -> Tuple[float, float]:

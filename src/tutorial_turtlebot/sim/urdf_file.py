@@ -14,7 +14,6 @@ path and ``Geometry.uri`` the filename as written. The file's triangles are read
 """
 import os
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Dict, List, Optional, Tuple
 
 import numpy as np
@@ -25,12 +24,10 @@ from . import xml_reader
 from .asset_uri import resolve_uri
 from .kinematics import Vector3, transform_from_xyz_rpy
 from .mesh_file import load_mesh
-from .package_data import data_dir
-from .robot_models import get_model
+from .robot_models import urdf_path  # noqa: F401 (where its users import it from)
 from .robot_plugins import RobotPlugins, read_plugins
 from .xml_reader import Element, XmlReader
 
-URDF_DIR = Path(data_dir("urdf"))
 NAMED = ("robot", "link", "joint", "material")  # elements that errors call by name
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic", "floating", "planar")
 LUMP = "_fixed_joint_lump__"
@@ -207,15 +204,6 @@ class RobotDescription:
                 names.append(geom if geom.startswith(link) else link + LUMP + geom)
             out[link] = names
         return out
-
-
-def urdf_path(model_name: str, with_camera: bool = False) -> str:
-    """Path of the URDF shipped for a TurtleBot3 model. ``with_camera`` on a model that carries no
-    camera (burger) gives its AutoRace variant; an unknown model raises ModelError."""
-    spec = get_model(model_name)
-    if with_camera and not spec.carries_camera:
-        return str(URDF_DIR / ("turtlebot3_%s_for_autorace.urdf" % spec.name))
-    return str(URDF_DIR / spec.urdf_name)
 
 
 def read_urdf(path) -> RobotDescription:
