@@ -144,11 +144,27 @@ class SimRun:
                 except ProcessLookupError:
                     pass
         for proc in reversed(self.procs):
-            try:
-                proc.wait(15)
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait()
+            wait_or_kill(proc)
+
+
+def wait_or_kill(proc, timeout=15.0):
+    """Wait for ``proc`` to end; SIGKILL its process group (it was started in a session of its
+    own) if it has not within ``timeout`` s."""
+    try:
+        proc.wait(timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+
+
+def stop_process(proc, timeout=15.0):
+    """SIGINT to ``proc``'s process group, then wait_or_kill."""
+    if proc.poll() is None:
+        try:
+            os.killpg(proc.pid, signal.SIGINT)
+        except ProcessLookupError:
+            pass
+    wait_or_kill(proc, timeout)
 
 
 def cpu_seconds(pid) -> float:
@@ -410,13 +426,8 @@ class BareMaster:
         raise RuntimeError("roslaunch set no parameter within %g s" % timeout)
 
     def stop(self):
-        if self.proc is not None and self.proc.poll() is None:
-            os.killpg(self.proc.pid, signal.SIGINT)
-            try:
-                self.proc.wait(15)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.proc.pid, signal.SIGKILL)
-                self.proc.wait()
+        if self.proc is not None:
+            stop_process(self.proc)
         os.unlink(self.launch_file)
 
 
@@ -451,9 +462,7 @@ def measure_stage_client_floor(seconds=10.0) -> float:
         raise RuntimeError("stage_client.py --steps-only said nothing")
     finally:
         for proc in procs:
-            if proc.poll() is None:
-                os.killpg(proc.pid, signal.SIGINT)
-            proc.wait()
+            stop_process(proc)
         bare.stop()
 
 

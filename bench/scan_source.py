@@ -11,7 +11,7 @@ RATE_HZ = 1000.0
 
 
 def main():
-    rospy.init_node("bench_scan_source", anonymous=True, disable_signals=True)
+    rospy.init_node("bench_scan_source", anonymous=True)   # SIGINT: rospy shuts down
     pub = rospy.Publisher("/scan", LaserScan, queue_size=1)
     scan = LaserScan()
     scan.header.frame_id = "base_scan"
@@ -19,14 +19,14 @@ def main():
     scan.range_min, scan.range_max = 0.12, 3.5
     scan.ranges = [1.0] * 24
     next_time = time.monotonic()
-    try:
-        while not rospy.is_shutdown():
-            scan.header.stamp = rospy.Time.from_sec(time.time())
+    while not rospy.is_shutdown():
+        scan.header.stamp = rospy.Time.from_sec(time.time())
+        try:
             pub.publish(scan)
-            next_time += 1.0 / RATE_HZ
-            time.sleep(max(0.0, next_time - time.monotonic()))
-    except KeyboardInterrupt:
-        pass
+        except rospy.ROSException:   # shut down between the check and the publish
+            break
+        next_time += 1.0 / RATE_HZ
+        time.sleep(max(0.0, next_time - time.monotonic()))
 
 
 if __name__ == "__main__":

@@ -110,3 +110,26 @@ def test_script_prints_the_urdf():
                           check=False)
     assert done.returncode == 0, done.stderr
     assert done.stdout == urdf_text("turtlebot3_waffle.urdf")
+
+
+def test_a_file_that_is_not_xml_is_named_in_one_line(capsys, monkeypatch, tmp_path):
+    """A model's URDF that is not XML: status 2, one line naming the file and its line."""
+    broken = tmp_path / "turtlebot3_burger.urdf"
+    broken.write_text('<robot name="b">\n<link name="x">\n</robot>\n', encoding="utf-8")
+    monkeypatch.setattr(robot_description, "urdf_path", lambda model, camera=False: str(broken))
+    status, out, err = run_main(capsys, "burger")
+    assert status == 2 and out == ""
+    line = one_error_line(err)
+    assert str(broken) in line and ":3" in line
+
+
+def test_the_script_imports_no_numpy():
+    """sim.launch runs it before roslaunch starts the master: every start-up waits for it, and
+    numpy alone took 0.1 s of it."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    done = subprocess.run(
+        [sys.executable, "-c", "import sys; import tutorial_turtlebot.gazebo.robot_description;"
+         " print('numpy' in sys.modules)"], capture_output=True, text=True, env=env, timeout=60,
+        check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "False"
