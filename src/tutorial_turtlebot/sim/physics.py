@@ -93,7 +93,7 @@ class WorldPhysics:
         self.world_bodies = build_world(world, cid)
         self._free_bits: List[int] = [1 << (FIRST_ROBOT_BIT + i) for i in range(MAX_ROBOTS)]
         # threads pybullet casts a batch of rays on: the hits are the same for any count; 2
-        # halve a scan's wall time on an idle second core but cost a fifth more CPU in all
+        # take 60 % of the wall time on an idle second core, and a fifth more CPU in all
         self.ray_threads = 1
 
     def step(self) -> None:
