@@ -340,32 +340,36 @@ def step_outputs(sim, due) -> None:
             getattr(robot, name)()
 
 
-def sim_bounds(wall_seconds=6.0, rounds=3):
+def stepping_factors(sim, runs, wall_seconds, rounds=3):
+    """Real-time factor of each of ``runs`` (callables that each advance ``sim`` by one step),
+    no ROS. They take turns in ``rounds`` rounds over ``wall_seconds`` in all, so that a drift
+    of the machine's speed falls on each alike."""
+    sim_s, wall_s = [0.0] * len(runs), [0.0] * len(runs)
+    slot = wall_seconds / (rounds * len(runs))
+    for _ in range(rounds):
+        for k, run in enumerate(runs):
+            t0 = time.perf_counter()
+            while time.perf_counter() - t0 < slot:
+                for _ in range(80):   # 0.2 s of sim time: whole scan periods
+                    run()
+                sim_s[k] += 80 * sim.config.time_step
+            wall_s[k] += time.perf_counter() - t0
+    return tuple(s / w for s, w in zip(sim_s, wall_s))
+
+
+def sim_bounds(wall_seconds=6.0):
     """Real-time factors, no ROS, Burger in turtlebot3_world standing at its spawn with the
     brake on, as in the fast runs (nothing sends cmd_vel there): (pybullet's step alone,
     Simulation.step (the drive, IMU filter and schedules too), Simulation.step with every output
     computed as it falls due). The last two are what the node could reach with ROS costing
-    nothing: the ceilings under the only-/odom and every-sensor rows. The three take turns in
-    ``rounds`` rounds over ``wall_seconds`` in all, so that a drift of the machine's speed
-    falls on each alike."""
+    nothing: the ceilings under the only-/odom and every-sensor rows."""
     from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
     sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
     try:
         for _ in range(400):   # 1 s of sim time: settled on its wheels, the brake on
             sim.step()
-        runs = (lambda: sim.physics.step(), lambda: sim.step(),
-                lambda: step_outputs(sim, sim.step()))
-        sim_s, wall_s = [0.0] * len(runs), [0.0] * len(runs)
-        slot = wall_seconds / (rounds * len(runs))
-        for _ in range(rounds):
-            for k, run in enumerate(runs):
-                t0 = time.perf_counter()
-                while time.perf_counter() - t0 < slot:
-                    for _ in range(80):   # 0.2 s of sim time: whole scan periods
-                        run()
-                    sim_s[k] += 80 * sim.config.time_step
-                wall_s[k] += time.perf_counter() - t0
-        return tuple(s / w for s, w in zip(sim_s, wall_s))
+        return stepping_factors(sim, (lambda: sim.physics.step(), lambda: sim.step(),
+                                      lambda: step_outputs(sim, sim.step())), wall_seconds)
     finally:
         sim.close()
 
@@ -604,7 +608,7 @@ def measure_scaling(seconds=4.0, warmup=1.0):
         os.unlink(f.name)
 
 
-def robots_bound(count, world="empty", poses=None, wall_seconds=1.5):
+def robots_bound(count, world="empty", poses=None, wall_seconds=3.0):
     """(physics alone, physics and sensors): real-time factors of ``count`` Burgers in
     ``world`` at ``poses`` ((x, y, yaw) each; default: bench/multi_robot.py's grid) stepped by
     Simulation.step with no ROS; for the second, every output that falls due is also computed
@@ -623,16 +627,8 @@ def robots_bound(count, world="empty", poses=None, wall_seconds=1.5):
                           ((x, y, 0.0), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))))
         for _ in range(400):  # 1 s of sim time: the robots settle on their wheels
             sim.step()
-        factors = []
-        for sensors in (False, True):
-            start_sim, t0 = sim.time, time.perf_counter()
-            while time.perf_counter() - t0 < wall_seconds:
-                for _ in range(100):
-                    due = sim.step()
-                    if sensors:
-                        step_outputs(sim, due)
-            factors.append((sim.time - start_sim) / (time.perf_counter() - t0))
-        return tuple(factors)
+        return stepping_factors(sim, (lambda: sim.step(), lambda: step_outputs(sim, sim.step())),
+                                wall_seconds)
     finally:
         sim.close()
 

@@ -187,6 +187,7 @@ class SimRobot:
         self.encoders.reset()
         self._last_control_ns = None
         self._imu_velocity = ((0.0, 0.0, 0.0), now_ns)
+        self._imu_angular = (None, None)   # (chassis rad/s in the world, ns) at the last tick
         self._imu_accel = (0.0, 0.0, 0.0)
         self._imu_state: Optional[ImuState] = None
         self._imu_state_ns: Optional[int] = None
@@ -280,7 +281,7 @@ class SimRobot:
         chassis' velocity since the last tick. The reading itself is worked out when asked for
         (imu()), unless it has noise: its draws are made at every tick, asked for or not, so
         the random sequence (shared with the laser) does not depend on who subscribes."""
-        lin, _ = self.body.velocity()
+        lin, ang = self.body.velocity()
         last_lin, last_ns = self._imu_velocity
         if self.time_ns > last_ns:
             dt = (self.time_ns - last_ns) / NS_PER_S
@@ -288,6 +289,7 @@ class SimRobot:
             self._imu_accel = tuple(a + ((v - v0) / dt - a) * gain
                                     for a, v, v0 in zip(self._imu_accel, lin, last_lin))
         self._imu_velocity = (lin, self.time_ns)
+        self._imu_angular = (ang, self.time_ns)   # a reading at this tick needs no second read
         self._imu_state_ns = None
         if self.imu_plugin and self.imu_plugin.gaussian_noise > 0:
             self._sample_imu()
@@ -296,7 +298,9 @@ class SimRobot:
         """Keep what the IMU reads now, from the chassis and the filtered acceleration. The
         IMU link is rigidly attached to the chassis without rotation, as on every TurtleBot3."""
         _, orn = self.body.footprint_pose()
-        _, ang = self.body.velocity()
+        ang, at_ns = self._imu_angular
+        if at_ns != self.time_ns:
+            _, ang = self.body.velocity()
         ax, ay, az = self._imu_accel
         rates = kinematics.to_body(orn, ang)
         accel = kinematics.to_body(orn, (ax, ay, az + GRAVITY))
