@@ -7,7 +7,7 @@
 # Each target does its own set-up first (tools/setup.sh, idempotent); the test targets also
 # make the Python 3.8 venv for the unit tests where a Python 3.8 exists (tools/setup.sh --test).
 SHELL := /bin/bash
-WS := $(CURDIR)/.catkin_ws
+WS := $(CURDIR)/catkin_ws
 ROS_ENV := source $(WS)/devel/setup.bash
 MODEL ?= $(or $(TURTLEBOT3_MODEL),burger)
 
@@ -38,4 +38,4 @@ bench: setup
 	@$(ROS_ENV) && python3 bench/run_bench.py
 
 clean:
-	rm -rf $(WS)
+	rm -rf $(WS) .catkin_ws

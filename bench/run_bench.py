@@ -2,7 +2,7 @@
 """``make bench``: launch the real sim with roslaunch and measure it; print one table.
 
 Each figure is the median of ``--runs`` runs (default 3). Run from a shell where
-``source .catkin_ws/devel/setup.bash`` was done (make bench does it). Every run starts its own
+``source catkin_ws/devel/setup.bash`` was done (make bench does it). Every run starts its own
 master on a free port, so nothing else on the machine is disturbed.
 
 Measured (Burger in turtlebot3_world unless said):

@@ -10,7 +10,7 @@ spawns and deletes a box, deletes and respawns the last robot, sends every robot
 normal cmd_vel, resets the world and the simulation, pauses and unpauses. Every ``--every``
 wall seconds it prints ``wall_s sim_s rss_mb spawns robot_respawns resets``; the last line says
 whether RSS stayed flat: its growth over the last third of the run under 2 MB.
-Run from a shell where ``source .catkin_ws/devel/setup.bash`` was done.
+Run from a shell where ``source catkin_ws/devel/setup.bash`` was done.
 """
 import argparse
 import os

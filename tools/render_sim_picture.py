@@ -5,7 +5,7 @@ A Waffle Pi stands at its spawn in turtlebot3_world (the simulator's own world, 
 camera renderer, no ROS master); a camera behind and above it looks over it into the arena.
 The PNG is written with zlib and struct only (no image library needed).
 
-    source .catkin_ws/devel/setup.bash
+    source catkin_ws/devel/setup.bash
     python3 tools/render_sim_picture.py                 # writes doc/sim_turtlebot3_world.png
     python3 tools/render_sim_picture.py --model burger --output /tmp/burger.png
 """

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Run the test suites in a shell where `source .catkin_ws/devel/setup.bash` was done.
+# Run the test suites in a shell where `source catkin_ws/devel/setup.bash` was done.
 #   tools/run_tests.sh [unit|rostest|all]   (default all)
-# unit: pytest under the venv's Python, again under Python 3.8 (.catkin_ws/venv38, made by
+# unit: pytest under the venv's Python, again under Python 3.8 (catkin_ws/venv38, made by
 # `tools/setup.sh --test` where a Python 3.8 exists; skipped with one line where not), and
 # every shell script checked by shellcheck (one test). rostest: every test/rostest/*.test.
 # Ends with one summary line "tests: N passed, N failed" (", N skipped" when some were) and
@@ -13,8 +13,8 @@ what=${1:-all}
 passed=0
 failed=0
 skipped=0
-results="$ROOT/.catkin_ws/test_results"
-VENV38="$ROOT/.catkin_ws/venv38"
+results="$ROOT/catkin_ws/test_results"
+VENV38="$ROOT/catkin_ws/venv38"
 mkdir -p "$results"
 
 count() {
@@ -52,8 +52,8 @@ run_unit() {
 run_unit38() {
   if [ -f "$VENV38/.tutorial_turtlebot-stamp" ]; then
     run_pytest "Python 3.8 ($VENV38)" "$VENV38/bin/python3" pytest-unit-py38.xml
-  elif [ -f "$ROOT/.catkin_ws/venv38.skipped" ]; then
-    echo "=== unit tests, Python 3.8: skipped, $(cat "$ROOT/.catkin_ws/venv38.skipped")"
+  elif [ -f "$ROOT/catkin_ws/venv38.skipped" ]; then
+    echo "=== unit tests, Python 3.8: skipped, $(cat "$ROOT/catkin_ws/venv38.skipped")"
   else
     echo "=== unit tests, Python 3.8: skipped, no $VENV38 (tools/setup.sh --test makes it; make test runs that)"
   fi
@@ -67,7 +67,7 @@ shell_scripts() {
        || head -n 1 "$f" 2>/dev/null | grep -qE '^#!.*\b(ba|da|k)?sh\b'; then
       printf '%s\n' "$f"
     fi
-  done < <(find . \( -path ./.catkin_ws -o -path ./.git \) -prune -o -type f -print0 | sort -z)
+  done < <(find . \( -path ./catkin_ws -o -path ./.git \) -prune -o -type f -print0 | sort -z)
 }
 
 run_shellcheck() {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up everything tutorial_turtlebot needs, idempotently: system packages, the Python venv
-# (the system's rospy + PyPI's pybullet and numpy) and the catkin workspace .catkin_ws/.
+# (the system's rospy + PyPI's pybullet and numpy) and the catkin workspace catkin_ws/.
 # Usage: tools/setup.sh               (what `make demo` runs first)
 #        tools/setup.sh --test        (the same plus the Python 3.8 venv for the unit tests:
 #                                      what `make test` runs first)
@@ -13,7 +13,9 @@
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-WS="$ROOT/.catkin_ws"
+# The workspace, catkin_ws/ in the clone (not hidden: rosbash's tab completion skips every path
+# with a hidden folder in it). TUTORIAL_TURTLEBOT_WS moves it: for the set-up's own tests.
+WS="${TUTORIAL_TURTLEBOT_WS:-$ROOT/catkin_ws}"
 VENV="$WS/venv"
 VENV38="$WS/venv38"
 SYS_PYTHON=/usr/bin/python3
@@ -49,6 +51,12 @@ apt_run() {
   fi
   rm -f "$log"
 }
+
+if [ -d "$ROOT/.catkin_ws" ] && [ "$mode" != --deps-only ]; then
+  # Earlier versions kept the workspace in the hidden .catkin_ws/, where rosbash's completion never looks.
+  say "removing the old workspace .catkin_ws/ (it is catkin_ws/ now, where tab completion finds it)"
+  rm -rf "$ROOT/.catkin_ws"
+fi
 
 # --- the plan ------------------------------------------------------------------------------------
 
@@ -140,6 +148,37 @@ install_system() {
 
 # --- the Python venvs ----------------------------------------------------------------------------
 
+venv_problem() {
+  # venv_problem VENV STAMP CHECK: why VENV cannot be completed in place (nothing if it can,
+  # or is absent).
+  # A venv whose pyvenv.cfg is gone (an interrupted rm -rf) runs as the system Python, and pip
+  # then refuses or writes outside it: such a venv is made anew, never patched.
+  local venv=$1 prefix
+  [ -e "$venv" ] || return 0
+  if [ ! -f "$venv/pyvenv.cfg" ]; then
+    echo "it has no pyvenv.cfg"
+  elif [ ! -x "$venv/bin/python3" ]; then
+    echo "it has no bin/python3"
+  elif ! prefix=$("$venv/bin/python3" -c 'import sys; print(sys.prefix)' 2>/dev/null); then
+    echo "its bin/python3 does not run"
+  elif [ "$(cd "$venv" && pwd -P)" != "$(cd "$prefix" 2>/dev/null && pwd -P)" ]; then
+    echo "its bin/python3 is not the venv's (its prefix is $prefix)"
+  elif [ -f "$venv/$STAMP_NAME" ] && [ "$(cat "$venv/$STAMP_NAME")" = "$2" ] \
+       && ! "$venv/bin/python3" -c "$3" >/dev/null 2>&1; then
+    echo "it is stamped ready but cannot import its packages"
+  fi
+}
+
+heal_venv() {
+  # heal_venv VENV STAMP CHECK: a broken VENV is removed, with one line saying why.
+  local problem
+  problem=$(venv_problem "$1" "$2" "$3")
+  if [ -n "$problem" ]; then
+    say "python venv $1 is broken ($problem): making it anew"
+    rm -rf "$1"
+  fi
+}
+
 venv_ready() {
   # venv_ready VENV STAMP CHECK: stamped for this plan, and the import check passes.
   [ -f "$1/$STAMP_NAME" ] && [ "$(cat "$1/$STAMP_NAME")" = "$2" ] \
@@ -166,6 +205,51 @@ pip_install() {
     || fail "pip install $* failed in $venv"
 }
 
+pybullet_wheel() {
+  # Where there is no wheel on PyPI (Python 3.12+, ARM): build pybullet once, keep the wheel in
+  # the user's cache, and print that folder for pip's --find-links. A second venv (make clean,
+  # another clone) installs the kept wheel in seconds.
+  local dir="${XDG_CACHE_HOME:-$HOME/.cache}/tutorial_turtlebot/wheels/$PLAN_WHEEL_CACHE"
+  if compgen -G "$dir/pybullet-*.whl" >/dev/null; then
+    say "pybullet: the wheel built before ($dir)" >&2
+  else
+    say "building pybullet from source once: about 5 minutes on 2 cores; kept in $dir" >&2
+    local build log
+    build=$(mktemp -d)
+    log="$build/build.log"
+    if ! CFLAGS="$PLAN_BUILD_CFLAGS ${CFLAGS:-}" "$VENV/bin/python3" -m pip wheel -q \
+          --disable-pip-version-check --no-deps --no-build-isolation -w "$build" \
+          "$(grep -oE 'pybullet==[^ ]+' <<<"$PLAN_PIP")" >"$log" 2>&1; then
+      grep -E 'error|Error' "$log" | tail -n 5 >&2
+      fail "building the pybullet wheel failed (whole log: $log)"
+    fi
+    mkdir -p "$dir"
+    mv "$build"/pybullet-*.whl "$dir"/
+    rm -rf "$build"
+  fi
+  printf '%s\n' "$dir"
+}
+
+patch_xacro() {
+  # PyPI's xacro 1.13.3 (ROS 1's) writes attributes through minidom's private _write_data, which
+  # Python 3.13 gave a third argument (attr). xacro's own later releases pass attr=True; the
+  # same one-line change is made here where the Python needs it, and said once.
+  "$1" - <<'PY' || fail "patching xacro for this Python failed"
+import inspect, os, sys, xml.dom.minidom, xacro.xmlutils as m
+if len(inspect.signature(xml.dom.minidom._write_data).parameters) >= 3:
+    old = "xml.dom.minidom._write_data(writer, attrs[a_name].value)"
+    path = m.__file__
+    text = open(path).read()
+    if old in text:
+        open(path, "w").write(text.replace(old, old[:-1] + ", True)"))
+        for cached in os.listdir(os.path.join(os.path.dirname(path), "__pycache__")):
+            if cached.startswith("xmlutils."):
+                os.remove(os.path.join(os.path.dirname(path), "__pycache__", cached))
+        print("[setup] xacro 1.13.3 patched for Python %d.%d's minidom (attr=True, one line of %s)"
+              % (sys.version_info[:2] + (path,)))
+PY
+}
+
 MAIN_CHECK='import rospy, pybullet, numpy, trimesh, collada, xacro
 assert pybullet.isNumpyEnabled(), "pybullet was built without numpy"'
 
@@ -174,8 +258,9 @@ install_python() {
     say "python venv: ready ($VENV)"
     return
   fi
+  heal_venv "$VENV" "$PLAN_STAMP" "$MAIN_CHECK"
   # No stamp until the check below passes: a run that fails half-way leaves a venv that the
-  # next run completes, never one it takes for ready.
+  # next run completes (or, if it broke, makes anew), never one it takes for ready.
   rm -f "$VENV/$STAMP_NAME"
   say "python venv $VENV: $PLAN_STAMP"
   venv_base "$VENV" "$SYS_PYTHON" --system-site-packages
@@ -185,9 +270,12 @@ install_python() {
   read -r -a flags <<<"$PLAN_PIP_FLAGS"
   [ ${#first[@]} -eq 0 ] || pip_install "$VENV" "${first[@]}"
   if [ "$PLAN_PYBULLET" = source ]; then
-    say "building pybullet from source: about 5 minutes on 2 cores"
+    local wheels
+    wheels=$(pybullet_wheel) || exit 1
+    flags+=(--find-links "$wheels")
   fi
   pip_install "$VENV" "${flags[@]}" "${pkgs[@]}"
+  patch_xacro "$VENV/bin/python3"
   local error
   if ! error=$("$VENV/bin/python3" -c "$MAIN_CHECK" 2>&1); then
     fail "the venv cannot import rospy, pybullet, numpy and the mesh readers together: $(tail -n 1 <<<"$error")"
@@ -214,6 +302,7 @@ install_python38() {
     say "python 3.8 venv: ready ($VENV38)"
     return
   fi
+  heal_venv "$VENV38" "$stamp" "$PY38_CHECK"
   rm -f "$VENV38/$STAMP_NAME"
   say "python 3.8 venv $VENV38: $PY38_PYTHON, $PY38_PIP"
   venv_base "$VENV38" "$PY38_PYTHON"
@@ -237,15 +326,15 @@ install_python38() {
 
 link_package() {
   # The workspace's copy of the package: a folder of links to the repository's entries, all
-  # but .catkin_ws itself (a link to the whole repository would let rosrun find every script
-  # a second time inside .catkin_ws and refuse to pick). catkin and rospack stop at its
+  # but catkin_ws itself (a link to the whole repository would let rosrun find every script
+  # a second time inside catkin_ws and refuse to pick). catkin and rospack stop at its
   # package.xml, so msgs/gazebo_msgs inside it is not found a second time.
   local pkg="$WS/src/tutorial_turtlebot" entry
   [ -L "$pkg" ] && rm "$pkg"
   mkdir -p "$pkg"
   find "$pkg" -maxdepth 1 -type l ! -exec test -e {} \; -delete   # entries since removed
   for entry in "$ROOT"/* "$ROOT"/.ci; do
-    [ -e "$entry" ] || continue
+    if [ ! -e "$entry" ] || [ "$entry" = "$WS" ]; then continue; fi
     ln -sfn "$entry" "$pkg/$(basename "$entry")"
   done
 }
@@ -271,16 +360,39 @@ link_stand_ins() {
   find "$WS/src" -maxdepth 1 -type l ! -name tutorial_turtlebot ! -exec test -e {} \; -delete
 }
 
+workspace_inputs() {
+  # A digest of everything catkin_make reads: the build files and hooks of every package in
+  # src/, the messages, the rostest files it globs, what is linked, and its own command line.
+  # The Python code is not in it: the devel space points at src/, so an edit needs no build.
+  local args=$1
+  {
+    printf '%s\n' "$args"
+    (cd "$WS/src" && find -L . -maxdepth 1 | sort)
+    (cd "$ROOT" && find CMakeLists.txt package.xml setup.py env-hooks msgs ros_shims \
+        test/rostest -type f \( ! -path 'test/rostest/*' -o -name '*.test' \) -print0 \
+        | sort -z | xargs -0 sha256sum)
+  } | sha256sum | cut -d' ' -f1
+}
+
 build_workspace() {
   link_package
   link_stand_ins
+  local args=(-DPYTHON_EXECUTABLE="$VENV/bin/python3" -DTUTORIAL_TURTLEBOT_VENV="$VENV"
+              -DCATKIN_ENABLE_TESTING=ON)
+  local stamp="$WS/build/$STAMP_NAME" inputs
+  inputs=$(workspace_inputs "${args[*]}")
+  if [ -f "$WS/devel/setup.bash" ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$inputs" ]; then
+    say "catkin workspace: built, nothing changed ($WS)"
+    return
+  fi
   say "building catkin workspace $WS"
   local log="$WS/build.log"
-  if ! catkin_make -C "$WS" -DPYTHON_EXECUTABLE="$VENV/bin/python3" \
-        -DTUTORIAL_TURTLEBOT_VENV="$VENV" -DCATKIN_ENABLE_TESTING=ON >"$log" 2>&1; then
+  rm -f "$stamp"
+  if ! catkin_make -C "$WS" "${args[@]}" >"$log" 2>&1; then
     tail -n 30 "$log" >&2
     fail "catkin_make failed (whole log: $log)"
   fi
+  printf '%s\n' "$inputs" >"$stamp"
 }
 
 deps_only_hint() {

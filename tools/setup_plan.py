@@ -46,6 +46,9 @@ XACRO = "xacro==1.13.3"
 CATKIN_LINT = "catkin-lint==1.6.25"  # make test checks the packages' CMakeLists.txt and package.xml
 WHEEL_MACHINES = ("x86_64", "amd64")
 WHEEL_PYTHONS = ((3, 8), (3, 11))  # pybullet 3.2.7 wheels: cp38, cp39, cp310, cp311
+# pybullet 3.2.7's C passes numpy arrays as PyObject*: GCC 14 (Debian 13, Ubuntu 24.10) made
+# that an error. The flag is known to every GCC since 5 and to clang.
+PYBULLET_BUILD_CFLAGS = "-Wno-error=incompatible-pointer-types"
 DEBIAN_DIST_PACKAGES = "/usr/lib/python3/dist-packages"
 
 # Both kinds of ROS 1: the lab's tools that are not ROS packages.
@@ -54,7 +57,8 @@ COMMON_APT = (
     "python3-pil",                          # JPEG for .../compressed
     "libegl1", "libgl1-mesa-dri",           # the cameras render through Mesa's EGL
     "python3-tk", "python3-pil.imagetk",    # the camera viewer
-    "xvfb", "x11-utils",                    # a display for the viewer's test; xdpyinfo
+    "xvfb", "xauth", "x11-utils",           # a display for the viewer's test (xvfb-run needs
+                                            # xauth); xdpyinfo
     "graphviz", "xdot",                     # the graph command (rqt_graph's picture)
     "shellcheck",                           # make test checks every shell script
 )
@@ -63,7 +67,8 @@ COMMON_APT = (
 # three parts each: python3-X (the Python module), ros-X (the .msg definitions that rosmsg
 # show reads) and libX-dev (the CMake config that catkin_make of gazebo_msgs needs).
 DISTRO_ROS_APT = (
-    "ros-core", "python3-rospy", "python3-roslaunch", "python3-rostest", "librostest-dev",
+    "ros-core", "ros-environment",          # ros-environment: ROS_PACKAGE_PATH in devel/setup.bash
+    "python3-rospy", "python3-roslaunch", "python3-rostest", "librostest-dev",
     "rosbash", "catkin", "python3-catkin-pkg", "python3-rosbag", "python3-pytest",
     "python3-std-msgs", "python3-geometry-msgs", "python3-sensor-msgs", "python3-nav-msgs",
     "python3-std-srvs", "python3-rosgraph-msgs", "python3-tf2-msgs", "python3-trajectory-msgs",
@@ -144,6 +149,21 @@ class Plan:
         return ("--no-build-isolation",) if self.pybullet_from == "source" else ()
 
     @property
+    def build_cflags(self):
+        """CFLAGS for building pybullet from source ("" where the wheel is used)."""
+        return PYBULLET_BUILD_CFLAGS if self.pybullet_from == "source" else ""
+
+    @property
+    def wheel_cache(self):
+        """The folder, under the user's cache, that keeps the pybullet wheel built here, so
+        that a second venv (a `make clean`, another clone) does not build it again; "" where
+        PyPI's wheel is used."""
+        if self.pybullet_from != "source":
+            return ""
+        numpy_major = "".join(c for c in self.numpy.split(",")[0] if c.isdigit() or c == ".")
+        return "pybullet-3.2.7-py%d.%d-numpy%s" % (self.python + (numpy_major.split(".")[0],))
+
+    @property
     def stamp(self):
         """What the venv was made for: a venv stamped otherwise is made again."""
         steps = [" ".join(self.pip_first), " ".join(self.pip_flags + self.pip)]
@@ -157,6 +177,7 @@ class Plan:
             ("PLAN_APT_UPDATE_FIRST", "1" if self.apt_update_first else "0"),
             ("PLAN_PIP_FIRST", " ".join(self.pip_first)), ("PLAN_PIP", " ".join(self.pip)),
             ("PLAN_PIP_FLAGS", " ".join(self.pip_flags)),
+            ("PLAN_BUILD_CFLAGS", self.build_cflags), ("PLAN_WHEEL_CACHE", self.wheel_cache),
             ("PLAN_PYBULLET", self.pybullet_from), ("PLAN_GAZEBO_MSGS", self.gazebo_msgs),
             ("PLAN_PYTHON", "%d.%d" % self.python), ("PLAN_STAMP", self.stamp),
             ("PLAN_NOTES", "\n".join(self.notes)),

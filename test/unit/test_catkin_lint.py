@@ -1,6 +1,6 @@
 """catkin_lint -W2 (every problem, notices included) finds nothing in the repository's catkin
 packages: tutorial_turtlebot, msgs/gazebo_msgs and ros_shims/*. catkin_lint comes from PyPI
-into .catkin_ws/venv (tools/setup_plan.py); the package is linted under its own name, as it
+into catkin_ws/venv (tools/setup_plan.py); the package is linted under its own name, as it
 sits in a workspace's src/ (a link <tmp>/tutorial_turtlebot -> this repository)."""
 import glob
 import os
@@ -11,7 +11,7 @@ import sys
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-VENV_LINT = os.path.join(ROOT, ".catkin_ws", "venv", "bin", "catkin_lint")
+VENV_LINT = os.path.join(ROOT, "catkin_ws", "venv", "bin", "catkin_lint")
 
 
 def catkin_lint():
@@ -21,7 +21,7 @@ def catkin_lint():
         if exe and os.access(exe, os.X_OK):
             return exe
     pytest.fail("catkin_lint is not installed: run tools/setup.sh (it pip-installs catkin-lint "
-                "into .catkin_ws/venv)")
+                "into catkin_ws/venv)")
 
 
 def packages(base):

@@ -236,7 +236,7 @@ def normalise(text):
 @pytest.mark.parametrize("command, expected", list(runnable_blocks()))
 def test_runnable_block_prints_what_the_page_says(command, expected):
     if not ros_shell_ready():
-        pytest.skip("no ROS shell: source .catkin_ws/devel/setup.bash first")
+        pytest.skip("no ROS shell: source catkin_ws/devel/setup.bash first")
     env = dict(os.environ, COLUMNS="80")
     env.pop("ROS_MASTER_URI", None)
     done = subprocess.run(["bash", "-c", command], cwd=ROOT, env=env, stdout=subprocess.PIPE,

@@ -190,7 +190,7 @@ def _generated(kind):
         return importlib.import_module("gazebo_msgs." + kind)
     except ImportError:
         pytest.skip("gazebo_msgs is not built (run tools/setup.sh, then source "
-                    ".catkin_ws/devel/setup.bash)")
+                    "catkin_ws/devel/setup.bash)")
 
 
 @pytest.mark.parametrize("name", sorted(MESSAGES))

@@ -2,7 +2,7 @@
 
 A copy of the workspace (links to this repository, its msgs/ and ros_shims/ packages) is
 configured as tools/setup.sh and doc/development.md configure one, except that the venv is a link in
-the test's folder (<tmp>/venv -> .catkin_ws/venv), and installed into <tmp>/ws/install. Then,
+the test's folder (<tmp>/venv -> catkin_ws/venv), and installed into <tmp>/ws/install. Then,
 each time in a fresh `env -i bash` that sources nothing but the install space's setup.bash:
 
 1. with the recorded venv: roscore, `roslaunch tutorial_turtlebot sim.launch`,
@@ -11,7 +11,7 @@ each time in a fresh `env -i bash` that sources nothing but the install space's 
    and `rosrun tutorial_turtlebot sim` says in one line what is missing (no traceback);
 3. that copy with a venv/ inside it: the sim, dynparam and graph work again.
 
-The real .catkin_ws/venv is never moved: only the test's links to it are. About a minute.
+The real catkin_ws/venv is never moved: only the test's links to it are. About a minute.
 """
 import os
 import shutil
@@ -25,12 +25,12 @@ import pytest
 from unit_helpers import free_port
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-VENV = os.path.join(ROOT, ".catkin_ws", "venv")
+VENV = os.path.join(ROOT, "catkin_ws", "venv")
 CLEAN_PATH = "/usr/local/bin:/usr/bin:/bin"
 
 pytestmark = pytest.mark.skipif(
     os.path.realpath(sys.prefix) != os.path.realpath(VENV),
-    reason="runs once, under .catkin_ws/venv's Python (not again under Python 3.8)")
+    reason="runs once, under catkin_ws/venv's Python (not again under Python 3.8)")
 
 # Run in `env -i bash SCRIPT INSTALL PORT HOME`: the sim, dynparam and graph on a master of its own.
 SESSION = textwrap.dedent(r"""
