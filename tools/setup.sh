@@ -377,8 +377,13 @@ workspace_inputs() {
 build_workspace() {
   link_package
   link_stand_ins
-  local args=(-DPYTHON_EXECUTABLE="$VENV/bin/python3" -DTUTORIAL_TURTLEBOT_VENV="$VENV"
-              -DCATKIN_ENABLE_TESTING=ON)
+  # The workspace sits inside the package's folder: catkin_lint (and catkin, from a workspace
+  # above the clone) must not take its build and devel files for the package's own.
+  [ -f "$WS/CATKIN_IGNORE" ] || printf 'the workspace of tools/setup.sh: no sources here\n' >"$WS/CATKIN_IGNORE"
+  # PYTHON_EXECUTABLE for catkin's FindPythonInterp (Debian 12), Python_EXECUTABLE for its
+  # FindPython (Debian 13): the relays of the scripts in devel/lib are written for that Python.
+  local args=(-DPYTHON_EXECUTABLE="$VENV/bin/python3" -DPython_EXECUTABLE="$VENV/bin/python3"
+              -DTUTORIAL_TURTLEBOT_VENV="$VENV" -DCATKIN_ENABLE_TESTING=ON)
   local stamp="$WS/build/$STAMP_NAME" inputs
   inputs=$(workspace_inputs "${args[*]}")
   if [ -f "$WS/devel/setup.bash" ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$inputs" ]; then

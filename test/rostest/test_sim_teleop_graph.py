@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rostest node: the graph of ``roslaunch tutorial_turtlebot sim_teleop.launch`` as rqt_graph
 (nodes and topics) shows it: ``/turtlebot3_teleop_keyboard -> /cmd_vel -> /gazebo``, and
-``/gazebo`` publishing /scan, /odom, /imu, /joint_states, /clock and /tf (doc/turtlebot3.md 3.2).
+``/gazebo`` publishing /scan, /odom, /imu, /joint_states, /clock and /tf (doc/turtlebot3.md 3.1).
 
 The .test file runs the simulation part; this node loads sim_teleop.launch with roslaunch's
 loader, checks what it declares, and runs its teleop node on a pseudo-terminal (a keyboard node

@@ -12,9 +12,18 @@
 - The ROS wiki lists of doc/gazebo_node.md and doc/nodes.md (topics, services, parameters of each
   ``## Node``) name things the node's code (its ``Code:`` line) really has, with types that exist;
   the launch-file tables name real arguments.
+- Every file a command reads is in the repository or written by an earlier command on the page;
+  a file pasted into a single-quoted YAML string (``'$(cat FILE)'``) has no single quote.
+- Blocks marked ``<!-- sim example -->`` (a fenced ```bash block: plain command lines, or ``$``
+  lines with their output) run against the real sim in test/rostest/ros_shell.test. Every
+  command that spawns or moves a model is in one, at a spot of its own on its page, clear of
+  turtlebot3_world's pillars and walls.
+- README.md's first screen shows ``make demo`` and ``make test``; its benchmark figures are
+  doc/benchmark.md's.
 No ROS master.
 """
 import glob
+import math
 import os
 import re
 import shlex
@@ -23,11 +32,13 @@ import subprocess
 import xml.etree.ElementTree as ET
 
 import pytest
+import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 PAGES = ["README.md"] + sorted(os.path.relpath(p, ROOT)
                                for p in glob.glob(os.path.join(ROOT, "doc", "*.md")))
 RUNNABLE = re.compile(r"<!-- runnable -->\s*\n```bash\n(.*?)\n```", re.S)
+SIM_EXAMPLE = re.compile(r"<!-- sim example -->\s*\n```bash\n(.*?)\n```", re.S)
 WIKI_ITEM = re.compile(r"^- ((?:`[^`]+`(?:,\s*|\s+and\s+)?)+)\s*\(([^)]*)\)")
 PARAM_TYPES = ("double", "int", "bool", "string")
 
@@ -340,3 +351,216 @@ def test_readme_lists_every_script_and_links_every_page():
     for link in links:
         if not re.match(r"^[a-z]+:", link):
             assert os.path.exists(os.path.join(ROOT, link)), link
+
+
+# --- files the commands read --------------------------------------------------------------------
+
+# The commands whose arguments may name files (the first word of a command line).
+FILE_TOOLS = {"rosrun", "roslaunch", "rostest", "rosservice", "rostopic", "rosbag", "python3",
+              "bash", "source", "cat", "sed", "head", "tail", "cp", "ign", "catkin_make", "xacro"}
+FILE_NAME = re.compile(r"(?<![\w./$~)-])(/?[\w.-]+(?:/[\w.-]+)*\.(?:sdf|urdf|world|xacro|xml|yaml"
+                       r"|py|sh|rviz|stl|dae|obj|bag))(?![\w/])")
+PASTED_IN_QUOTES = re.compile(r"'\$\(cat\s+([^)\s]+)\)'")
+
+
+def written_files(argv):
+    """The files ``argv`` writes: > FILE, >> FILE, tee FILE, -O FILE (rosbag), --output FILE."""
+    found = []
+    for before, word in zip(argv, argv[1:]):
+        if before in (">", ">>", "tee", "-O", "--output"):
+            found.append(word)
+    found += [word.lstrip(">") for word in argv if re.match(r"^>>?[^>&]", word)]
+    return found
+
+
+def file_problems(page, text):
+    """One line per file that a command on the page reads and that is neither in the repository
+    nor written by an earlier command on the page."""
+    problems, written = [], set()
+    for number, argv in commands(text):
+        outputs = written_files(argv)
+        if argv[0] in FILE_TOOLS:
+            for word in argv[1:]:
+                if word in outputs:
+                    continue
+                for name in FILE_NAME.findall(word):
+                    if name.endswith(".launch") or re.search(r"[A-Z]{3,}", name) \
+                            or name in written:
+                        continue
+                    if name.startswith("/") or not os.path.isfile(os.path.join(ROOT, name)):
+                        problems.append("%s:%d: %s is not in the repository nor written by an "
+                                        "earlier command" % (page, number, name))
+        written.update(outputs)
+    for number, line in code_lines(text):
+        for name in PASTED_IN_QUOTES.findall(line):
+            path = os.path.join(ROOT, name)
+            if os.path.isfile(path) and "'" in read(name):
+                problems.append("%s:%d: %s is pasted inside single quotes but has a single quote "
+                                "(line %d)" % (page, number, name,
+                                               read(name).split("'")[0].count("\n") + 1))
+    return problems
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_every_file_a_command_reads_is_there(page):
+    problems = file_problems(page, read(page))
+    assert not problems, "\n".join(problems)
+
+
+def test_the_file_check_catches_mistakes(tmp_path):
+    assert file_problems("p", "    rosrun tutorial_turtlebot spawn_model -sdf -file box.sdf "
+                              "-model box\n") == [
+        "p:1: box.sdf is not in the repository nor written by an earlier command"]
+    assert file_problems("p", "    rosrun tutorial_turtlebot spawn_model -urdf -file /tmp/a.urdf"
+                              " -model a\n")
+    assert not file_problems("p", "    cat urdf/turtlebot3_burger.urdf > /tmp/a.urdf\n"
+                                  "    rosrun tutorial_turtlebot spawn_model -urdf -file /tmp/a.urdf"
+                                  " -model a\n")
+    assert file_problems("p", "    rosservice call /gazebo/spawn_sdf_model "
+                              "\"{model_xml: '$(cat models/nothing/model.sdf)'}\"\n")
+    assert not file_problems("p", "    rosservice call /gazebo/spawn_sdf_model "
+                                  "\"{model_xml: '$(cat models/goal_box/model.sdf)'}\"\n")
+    quoted = os.path.relpath(str(tmp_path / "quoted.sdf"), ROOT)
+    (tmp_path / "quoted.sdf").write_text("<sdf>\n<!-- the robot's -->\n</sdf>\n")
+    assert file_problems("p", "    rosservice call /gazebo/spawn_sdf_model "
+                              "\"{model_xml: '$(cat %s)'}\"\n" % quoted) == [
+        "p:1: %s is pasted inside single quotes but has a single quote (line 2)" % quoted]
+
+
+# --- the examples that run against the sim ------------------------------------------------------
+
+SPAWN_SERVICES = ("/gazebo/spawn_sdf_model", "/gazebo/spawn_urdf_model")
+# m: the largest TurtleBot3's turning radius, the farthest corner of the Waffle's footprint
+# (doc/turtlebot3.md 1.1); every spot is taken as a robot that wide.
+FOOTPRINT_RADIUS = 0.26
+# turtlebot3_world's own robot, at turtlebot3_gazebo's spawn (doc/turtlebot3.md 4.1).
+OWN_ROBOT = ("the robot of sim.launch", -2.0, -0.5)
+
+
+def sim_example_lines(text):
+    """The line numbers (from 1) of the lines inside ``<!-- sim example -->`` blocks."""
+    lines = set()
+    for match in SIM_EXAMPLE.finditer(text):
+        first = text.count("\n", 0, match.start(1)) + 1
+        lines.update(range(first, first + match.group(1).count("\n") + 1))
+    return lines
+
+
+def _option(argv, name, default="0"):
+    return argv[argv.index(name) + 1] if name in argv[:-1] else default
+
+
+def _yaml_position(text, *keys):
+    data = yaml.safe_load(re.sub(r"\$\(cat [^)]*\)", "", text)) or {}
+    for key in keys:
+        data = data.get(key) or {}
+    return float(data.get("x", 0.0)), float(data.get("y", 0.0))
+
+
+def spawn_spots(text):
+    """(line, model name, x, y) of each command on the page that spawns or teleports a model."""
+    for number, argv in commands(text):
+        if argv[:1] == ["rosrun"] and argv[2:3] == ["spawn_model"] and "-model" in argv:
+            yield (number, _option(argv, "-model", "?"), float(_option(argv, "-x")),
+                   float(_option(argv, "-y")))
+        elif argv[:2] == ["rosservice", "call"] and len(argv) >= 4:
+            if argv[2] in SPAWN_SERVICES:
+                name = (yaml.safe_load(re.sub(r"\$\(cat [^)]*\)", "", argv[3])) or {}).get(
+                    "model_name", "?")
+                yield (number, name) + _yaml_position(argv[3], "initial_pose", "position")
+            elif argv[2] == "/gazebo/set_model_state":
+                state = (yaml.safe_load(argv[3]) or {}).get("model_state") or {}
+                name = state.get("model_name", "?")
+                if re.match(r"^turtlebot3_(burger|waffle|waffle_pi)$", name):
+                    name = OWN_ROBOT[0]
+                yield (number, name) + _yaml_position(argv[3], "model_state", "pose", "position")
+
+
+def spot_problems(page, text, world):
+    """Spawns or teleports on the page that are not in a sim example block, that share a spot
+    with another model of the page, or that stand in one of ``world``'s obstacles."""
+    from tutorial_turtlebot.sim.spawn_check import find_obstacle
+
+    problems = []
+    marked = sim_example_lines(text)
+    spots = [(0, OWN_ROBOT[0]) + OWN_ROBOT[1:]]
+    for number, name, x, y in spawn_spots(text):
+        if number not in marked:
+            problems.append("%s:%d: %s: not in a <!-- sim example --> block, so no test runs it"
+                            % (page, number, name))
+        hit = find_obstacle(world, x, y, FOOTPRINT_RADIUS)
+        if hit is not None:
+            problems.append("%s:%d: %s at (%g, %g) is within %.2f m of %s"
+                            % (page, number, name, x, y, FOOTPRINT_RADIUS, hit[0].name))
+        for _, other, ox, oy in spots:
+            if other != name and math.hypot(x - ox, y - oy) < 2 * FOOTPRINT_RADIUS:
+                problems.append("%s:%d: %s at (%g, %g) is within %.2f m of %s at (%g, %g)"
+                                % (page, number, name, x, y, 2 * FOOTPRINT_RADIUS, other, ox, oy))
+        spots.append((number, name, x, y))
+    return problems
+
+
+@pytest.fixture(scope="module")
+def turtlebot3_world():
+    from tutorial_turtlebot.sim.world_sdf import load_world, resolve_world
+
+    return load_world(resolve_world("turtlebot3_world")[0])
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_every_spawn_example_runs_at_a_free_spot(page, turtlebot3_world):
+    problems = spot_problems(page, read(page), turtlebot3_world)
+    assert not problems, "\n".join(problems)
+
+
+def test_the_spawn_examples_are_found(turtlebot3_world):
+    spots = {page: [spot[1:] for spot in spawn_spots(read(page))] for page in PAGES}
+    assert ("goal", -0.5, -0.5) in spots["doc/gazebo_node.md"]
+    assert ("box", -0.5, 0.5) in spots["doc/gazebo_node.md"]
+    assert [s[0] for s in spots["doc/robots.md"]] == ["my_burger", "tb3"]
+
+
+def test_the_spot_check_catches_mistakes(turtlebot3_world):
+    block = "<!-- sim example -->\n```bash\n%s\n```\n"
+    same = block % ("rosrun tutorial_turtlebot spawn_model -urdf -file a.urdf -model a -x 0.5\n"
+                    "rosrun tutorial_turtlebot spawn_model -urdf -file b.urdf -model b -x 0.6")
+    assert spot_problems("p", same, turtlebot3_world) == [
+        "p:4: b at (0.6, 0) is within 0.52 m of a at (0.5, 0)"]
+    pillar = block % "rosrun tutorial_turtlebot spawn_model -urdf -file a.urdf -model a -x 1"
+    problems = spot_problems("p", pillar, turtlebot3_world)
+    assert len(problems) == 1 and "a at (1, 0) is within 0.26 m of ros_symbol::" in problems[0]
+    unmarked = ("    rosservice call /gazebo/spawn_sdf_model \"{model_name: goal, model_xml: "
+                "'$(cat models/goal_box/model.sdf)', initial_pose: {position: {x: -0.5}}}\"\n")
+    assert spot_problems("p", unmarked, turtlebot3_world) == [
+        "p:1: goal: not in a <!-- sim example --> block, so no test runs it"]
+    teleport = block % ("rosservice call /gazebo/set_model_state '{model_state: {model_name: "
+                        "turtlebot3_waffle, pose: {position: {x: -1.9, y: -0.5}}}}'")
+    assert not spot_problems("p", teleport, turtlebot3_world)
+
+
+def test_there_are_sim_examples():
+    blocks = [match.group(1) for page in PAGES for match in SIM_EXAMPLE.finditer(read(page))]
+    assert any("$(cat models/goal_box/model.sdf)" in block for block in blocks)
+    assert any("-file doc/examples/box.sdf" in block for block in blocks)
+
+
+# --- the README's first screen and its benchmark ------------------------------------------------
+
+def test_readme_shows_the_two_commands_in_its_first_25_lines():
+    first = "\n".join(read("README.md").splitlines()[:25])
+    for command in ("make demo", "make test"):
+        assert re.search(r"^\s+%s\b" % command, first, re.M), \
+            "README.md: %r is not in the first 25 lines" % command
+
+
+def test_readme_benchmark_figures_are_those_of_doc_benchmark():
+    section = read("README.md").split("\n## Benchmark\n")[1].split("\n## ")[0]
+    table = read("doc/benchmark.md").split("<!-- LATEST TABLE")[1].split("<!-- END LATEST TABLE")[0]
+    figures = re.findall(r"\d+(?:\.\d+)?(?:x| %| s\b| ms\b| MB\b)", section)
+    assert figures, "README.md's Benchmark section gives no headline figure"
+    for figure in figures:
+        assert figure in table, "README.md's benchmark figure %s is not in doc/benchmark.md's " \
+                                "latest table" % figure
+    assert not re.search(r"\bminutes?\b", section), \
+        "README.md's Benchmark section says how long make bench takes: link doc/benchmark.md"
+    assert "doc/benchmark.md" in section

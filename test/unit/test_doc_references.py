@@ -287,3 +287,51 @@ def test_every_doc_page_is_linked_from_the_readme():
         links = set(MD_LINK.findall(handle.read()))
     pages = {"doc/" + f for f in os.listdir(os.path.join(ROOT, "doc")) if f.endswith(".md")}
     assert pages and not pages - {link.split("#")[0] for link in links}
+
+
+# --- numbered sections --------------------------------------------------------------------------
+
+NUMBERED_HEADING = re.compile(r"^(#+)\s+(\d+(?:\.\d+)*)\.?\s", re.M)
+
+
+def numbering_problems(text):
+    """One line per numbered heading that does not follow the one before: 1, 1.1, 1.2, 2, 2.1..."""
+    found, last = [], []
+    for match in NUMBERED_HEADING.finditer(text):
+        number = [int(part) for part in match.group(2).split(".")]
+        depth = len(number)
+        expected = (last[:depth - 1] + [last[depth - 1] + 1] if len(last) >= depth
+                    else last + [1] * (depth - len(last)))
+        if number != expected:
+            found.append("section %s follows %s: expected %s" % (
+                match.group(2), ".".join(map(str, last)) or "the start",
+                ".".join(map(str, expected))))
+        last = number
+    return found
+
+
+def test_numbered_sections_are_consecutive_on_every_page():
+    pages = ["README.md"] + ["doc/" + f for f in sorted(os.listdir(os.path.join(ROOT, "doc")))
+                             if f.endswith(".md")]
+    numbered, problems = [], []
+    for page in pages:
+        with open(os.path.join(ROOT, page), encoding="utf-8") as handle:
+            text = handle.read()
+        if NUMBERED_HEADING.search(text):
+            numbered.append(page)
+            problems += ["%s: %s" % (page, p) for p in numbering_problems(text)]
+    assert "doc/turtlebot3.md" in numbered and "doc/lab.md" in numbered, numbered
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("headings, expected", [
+    ("## 1. A\n### 1.1 B\n### 1.2 C\n## 2. D\n## 3. E\n### 3.1 F\n", None),
+    ("## 1. A\n## 3. C\n", "section 3 follows 1: expected 2"),
+    ("## 1. A\n## 2. B\n### 2.2 C\n", "section 2.2 follows 2: expected 2.1"),
+    ("## 1. A\n### 1.1 B\n### 1.3 C\n", "section 1.3 follows 1.1: expected 1.2"),
+    ("## 1. A\n### 1.1 B\n### 2.1 C\n", "section 2.1 follows 1.1: expected 1.2"),
+    ("## 2. A\n", "section 2 follows the start: expected 1"),
+])
+def test_a_numbering_gap_fails(headings, expected):
+    problems = numbering_problems("# Page\n\nText.\n\n" + headings)
+    assert problems == ([expected] if expected else []), problems

@@ -6,7 +6,7 @@ installed std_msgs/geometry_msgs/trajectory_msgs definitions, so this needs no b
 soon as a field's type, name or order (or a constant) changes. Where the workspace has been
 built, the generated Python classes must carry the same md5sums.
 
-Sources of the expected values: doc/turtlebot3.md 8.1 for the types listed there; the others are the
+Sources of the expected values: doc/turtlebot3.md 7.1 for the types listed there; the others are the
 md5sums found in public generated code for upstream's gazebo_msgs (roslisp, rosnodejs, ROS.NET,
 rosserial), which agree with each other.
 """
@@ -24,7 +24,7 @@ PKG_DIR = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__
                                         "..", "..", "msgs", "gazebo_msgs"))
 DEPENDENCIES = ("std_msgs", "geometry_msgs", "trajectory_msgs")
 
-# Messages: md5sum (doc/turtlebot3.md 8.1 unless marked "public").
+# Messages: md5sum (doc/turtlebot3.md 7.1 unless marked "public").
 MESSAGES = {
     "ModelState": "9330fd35f2fcd82d457e54bd54e10593",
     "ModelStates": "48c080191eb15c41858319b4d8a609c2",

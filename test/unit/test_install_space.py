@@ -94,7 +94,8 @@ def install(tmp):
             os.symlink(os.path.join(ROOT, parent, name), os.path.join(src, name))
     prefix = os.path.join(tmp, "ws", "install")
     build = clean_bash(
-        'catkin_make -C "$1" -DPYTHON_EXECUTABLE="$2/bin/python3" -DTUTORIAL_TURTLEBOT_VENV="$2" '
+        'catkin_make -C "$1" -DPYTHON_EXECUTABLE="$2/bin/python3" -DPython_EXECUTABLE="$2/bin/python3" '
+        '-DTUTORIAL_TURTLEBOT_VENV="$2" '
         '-DCATKIN_ENABLE_TESTING=OFF -DCMAKE_INSTALL_PREFIX="$3" install',
         os.path.join(tmp, "ws"), venv_link, prefix, timeout=600)
     assert build.returncode == 0, (build.stdout + build.stderr)[-3000:]

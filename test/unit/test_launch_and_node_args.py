@@ -1,9 +1,11 @@
 """What the launch files put on the parameter server, and how the sim reads its command line:
 roslaunch --dump-params (no master) and the sim node's argument helpers."""
+import glob
 import os
 import shutil
 import subprocess
 import sys
+import xml.etree.ElementTree as ET
 
 import pytest
 import yaml
@@ -45,6 +47,30 @@ def test_ros_args_lists_no_optional_argument_as_required(launch):
     listing = roslaunch("--ros-args", launch)
     assert "Required Arguments" not in listing, listing
     assert "Optional Arguments" in listing or "No arguments" in listing
+    assert "undocumented" not in listing, listing
+
+
+def undocumented_args(path):
+    """The <arg>s of a launch file that roslaunch --ros-args lists with no doc= (an arg with a
+    fixed value= and no default= is not listed)."""
+    return [arg.get("name") for arg in ET.parse(path).iter("arg")
+            if arg.get("doc") is None and not (arg.get("value") is not None
+                                               and arg.get("default") is None)]
+
+
+@pytest.mark.parametrize("path", [os.path.join("launch", f) for f in LAUNCH_FILES] + sorted(
+    os.path.relpath(p, ROOT) for pattern in ("test/**/*.launch", "test/**/*.test")
+    for p in glob.glob(os.path.join(ROOT, pattern), recursive=True)))
+def test_every_launch_argument_has_a_doc(path):
+    missing = undocumented_args(os.path.join(ROOT, path))
+    assert not missing, "%s: <arg> without doc=: %s" % (path, ", ".join(missing))
+
+
+def test_an_argument_without_doc_is_found(tmp_path):
+    path = tmp_path / "x.launch"
+    path.write_text('<launch><arg name="a" default="1" doc="m"/><arg name="b" default="2"/>'
+                    '<arg name="c" value="3"/><arg name="d"/></launch>')
+    assert undocumented_args(str(path)) == ["b", "d"]
 
 
 def test_auto_means_what_empty_meant():

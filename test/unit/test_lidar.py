@@ -1,4 +1,4 @@
-"""The LDS-01 model: scan fields, ray geometry and range conversion (doc/turtlebot3.md 2.2, 7)."""
+"""The LDS-01 model: scan fields, ray geometry and range conversion (doc/turtlebot3.md 2.2, 6)."""
 import math
 
 import numpy as np

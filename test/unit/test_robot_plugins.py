@@ -302,35 +302,36 @@ BAD = {
                                 "<max_angle>", ["sensor 'lds_lfcd_sensor' <max_angle>",
                                                 "greater than min_angle 0"]),
     "range_min_negative": ("<min>0.120</min>", "<min>-0.1</min>", "<min>",
-                           ["sensor 'lds_lfcd_sensor' <min>", "must be >= 0, got -0.1"]),
+                           ["sensor 'lds_lfcd_sensor' <min>", "min -0.1 is outside [0, 1e+06] m"]),
     "range_min_over_max": ("<min>0.120</min>", "<min>4</min>", "<max>3.5",
                            ["<max>", "max 3.5 must be greater than min 4"]),
     "noise_negative": ("<stddev>0.01</stddev>", "<stddev>-0.01</stddev>", "<stddev>-",
-                       ["sensor 'lds_lfcd_sensor' <stddev>", "must be >= 0"]),
+                       ["sensor 'lds_lfcd_sensor' <stddev>", "stddev -0.01 is outside [0, 1000]"]),
     "noise_type": ("<type>gaussian</type>\n          <mean>", "<type>pink</type>\n          <mean>",
                    "<type>pink", ["<type>", "gaussian, gaussian_quantized, none", "'pink'"]),
     "sensor_rate_negative": ("<update_rate>5</update_rate>", "<update_rate>-5</update_rate>",
                              "<update_rate>", ["sensor 'lds_lfcd_sensor' <update_rate>",
-                                               "must be >= 0, got -5"]),
+                                               "update_rate -5 is outside [1e-06, 1e+06] Hz "
+                                               "(or 0: every physics step)"]),
     "imu_rate_negative": ("<updateRate>200</updateRate>", "<updateRate>-1</updateRate>",
-                          "<updateRate>-1", ["plugin 'imu_plugin'", "<updateRate>", ">= 0"]),
+                          "<updateRate>-1", ["plugin 'imu_plugin'", "<updateRate>", "updateRate -1 is outside"]),
     "drive_rate_negative": ("<updateRate>30</updateRate>", "<updateRate>-30</updateRate>",
                             "<updateRate>-30", ["plugin 'turtlebot3_burger_controller'",
-                                                "<updateRate>", ">= 0"]),
+                                                "<updateRate>", "updateRate -30 is outside"]),
     "separation_zero": ("<wheelSeparation>0.160</wheelSeparation>",
                         "<wheelSeparation>0</wheelSeparation>", "<wheelSeparation>",
-                        ["<wheelSeparation>", "must be > 0, got 0"]),
+                        ["<wheelSeparation>", "wheelSeparation 0 must be positive, at most 10000 m"]),
     "separation_not_a_number": ("<wheelSeparation>0.160</wheelSeparation>",
                                 "<wheelSeparation>wide</wheelSeparation>", "<wheelSeparation>",
                                 ["<wheelSeparation>", "must be a number, got 'wide'"]),
     "diameter_negative": ("<wheelDiameter>0.066</wheelDiameter>",
                           "<wheelDiameter>-0.066</wheelDiameter>", "<wheelDiameter>",
-                          ["<wheelDiameter>", "must be > 0"]),
+                          ["<wheelDiameter>", "wheelDiameter -0.066 is outside [0.01, 10000] m"]),
     "torque_zero": ("<wheelTorque>10</wheelTorque>", "<wheelTorque>0</wheelTorque>",
-                    "<wheelTorque>", ["<wheelTorque>", "must be > 0"]),
+                    "<wheelTorque>", ["<wheelTorque>", "wheelTorque 0 must be positive, at most 1e+06 N m"]),
     "acceleration_negative": ("<wheelAcceleration>1</wheelAcceleration>",
                               "<wheelAcceleration>-1</wheelAcceleration>", "<wheelAcceleration>",
-                              ["<wheelAcceleration>", "must be >= 0"]),
+                              ["<wheelAcceleration>", "wheelAcceleration -1 is outside [0, 1e+06] m/s^2"]),
     "acceleration_nan": ("<wheelAcceleration>1</wheelAcceleration>",
                          "<wheelAcceleration>nan</wheelAcceleration>", "<wheelAcceleration>",
                          ["<wheelAcceleration>", "must be a number, got 'nan'"]),
@@ -355,10 +356,11 @@ BAD_CAMERA = {
                         ["<height>", "positive integer"]),
     "fov_too_wide": ("<horizontal_fov>1.085595</horizontal_fov>",
                      "<horizontal_fov>3.5</horizontal_fov>", "<horizontal_fov>",
-                     ["sensor 'front_camera' <horizontal_fov>", "between 0 and pi", "3.5"]),
+                     ["sensor 'front_camera' <horizontal_fov>",
+                      "horizontal_fov 3.5 is outside (0, 3.14159) rad"]),
     "fov_zero": ("<horizontal_fov>1.085595</horizontal_fov>",
                  "<horizontal_fov>0</horizontal_fov>", "<horizontal_fov>",
-                 ["<horizontal_fov>", "between 0 and pi"]),
+                 ["<horizontal_fov>", "horizontal_fov 0 is outside (0, 3.14159)"]),
     "near_beyond_far": ("<near>0.03</near>", "<near>200</near>", "<far>",
                         ["sensor 'front_camera' <far>", "far 100 must be greater than near 200"]),
     "camera_frame_not_a_link": ("<frameName>camera_optical_frame</frameName>",
@@ -369,7 +371,87 @@ BAD_CAMERA = {
     "camera_on_no_link": ('<gazebo reference="camera_link">', '<gazebo reference="camera">',
                           'reference="camera"', ["<gazebo reference='camera'>", "not a link"]),
     "camera_rate_negative": ("<update_rate>30</update_rate>", "<update_rate>-30</update_rate>",
-                             "<update_rate>-30", ["sensor 'front_camera' <update_rate>", ">= 0"]),
+                             "<update_rate>-30", ["sensor 'front_camera' <update_rate>",
+                                              "update_rate -30 is outside"]),
+}
+
+# Under abuse (issue 28): every number of the plugin blocks is held to limits, refused at parse
+# time in limits' wording, before anything is built (1e39 once half-added a robot and ended the
+# sim; 16385 samples ended it at the first scan subscriber; wheelDiameter 1e-300 flipped it).
+HUGE = {
+    "range_max_1e39": ("<max>3.5</max>", "<max>1e39</max>", "<max>1e39",
+                       ["sensor 'lds_lfcd_sensor' <max>", "max 1e+39 is outside [0, 1e+06] m"]),
+    "range_min_1e300": ("<min>0.120</min>", "<min>1e300</min>", "<min>",
+                        ["<min>", "min 1e+300 is outside [0, 1e+06] m"]),
+    "range_resolution": ("<resolution>0.015</resolution>", "<resolution>1e300</resolution>",
+                         "<resolution>1e300", ["<resolution>", "1e+300 is outside"]),
+    "samples_16385": ("<samples>360</samples>", "<samples>16385</samples>", "<samples>",
+                      ["sensor 'lds_lfcd_sensor' <samples>", "samples 16385 is outside [1, 3600]"]),
+    "samples_3e8": ("<samples>360</samples>", "<samples>300000000</samples>", "<samples>",
+                    ["<samples>", "samples 300000000 is outside [1, 3600]"]),
+    "scan_resolution": ("<resolution>1</resolution>", "<resolution>1e300</resolution>",
+                        "<resolution>1e300", ["<resolution>", "resolution 1e+300 must be positive, at most 10000"]),
+    "angle_1e300": ("<min_angle>0.0</min_angle>", "<min_angle>-1e300</min_angle>",
+                    "<min_angle>", ["<min_angle>", "min_angle -1e+300 is outside [-1e+06, 1e+06] "
+                                                   "rad"]),
+    "laser_noise_1e200": ("<stddev>0.01</stddev>", "<stddev>1e200</stddev>", "<stddev>1e200",
+                          ["<stddev>", "stddev 1e+200 is outside [0, 1000]"]),
+    "laser_noise_mean": ("<mean>0.0</mean>\n          <stddev>0.01",
+                         "<mean>1e300</mean>\n          <stddev>0.01", "<mean>1e300",
+                         ["<mean>", "mean 1e+300 is outside [-1000, 1000]"]),
+    "sensor_rate_tiny": ("<update_rate>5</update_rate>", "<update_rate>1e-300</update_rate>",
+                         "<update_rate>", ["<update_rate>", "update_rate 1e-300 is outside "
+                                                            "[1e-06, 1e+06] Hz"]),
+    "sensor_rate_huge": ("<update_rate>5</update_rate>", "<update_rate>1e300</update_rate>",
+                         "<update_rate>", ["<update_rate>", "1e+300 is outside"]),
+    "sensor_pose": ("<pose>0 0 0 0 0 0</pose>", "<pose>1e300 0 0 0 0 0</pose>", "<pose>",
+                    ["sensor 'lds_lfcd_sensor' <pose>", "pose.x 1e+300 is outside [-1e+06, "
+                                                        "1e+06] m"]),
+    "imu_noise_1e200": ("<gaussianNoise>0.0</gaussianNoise>",
+                        "<gaussianNoise>1e200</gaussianNoise>", "<gaussianNoise>",
+                        ["plugin 'imu_plugin' (libgazebo_ros_imu.so) <gaussianNoise>",
+                         "gaussianNoise 1e+200 is outside [0, 1000]"]),
+    "imu_rate_tiny": ("<updateRate>200</updateRate>", "<updateRate>1e-300</updateRate>",
+                      "<updateRate>1e-300", ["plugin 'imu_plugin'", "updateRate 1e-300 is outside"]),
+    "diameter_1e-300": ("<wheelDiameter>0.066</wheelDiameter>",
+                        "<wheelDiameter>1e-300</wheelDiameter>", "<wheelDiameter>",
+                        ["<wheelDiameter>", "wheelDiameter 1e-300 is outside [0.01, 10000] m"]),
+    "diameter_1e300": ("<wheelDiameter>0.066</wheelDiameter>",
+                       "<wheelDiameter>1e300</wheelDiameter>", "<wheelDiameter>",
+                       ["<wheelDiameter>", "1e+300 is outside [0.01, 10000] m"]),
+    "separation_1e300": ("<wheelSeparation>0.160</wheelSeparation>",
+                         "<wheelSeparation>1e300</wheelSeparation>", "<wheelSeparation>",
+                         ["wheelSeparation 1e+300 must be positive, at most 10000 m"]),
+    "torque_1e300": ("<wheelTorque>10</wheelTorque>", "<wheelTorque>1e300</wheelTorque>",
+                     "<wheelTorque>", ["wheelTorque 1e+300 must be positive, at most 1e+06 N m"]),
+    "acceleration_1e300": ("<wheelAcceleration>1</wheelAcceleration>",
+                           "<wheelAcceleration>1e300</wheelAcceleration>", "<wheelAcceleration>",
+                           ["wheelAcceleration 1e+300 is outside [0, 1e+06] m/s^2"]),
+    "drive_rate_tiny": ("<updateRate>30</updateRate>", "<updateRate>1e-300</updateRate>",
+                        "<updateRate>1e-300", ["plugin 'turtlebot3_burger_controller'",
+                                               "updateRate 1e-300 is outside"]),
+    "topic_not_a_ros_name": ("<topicName>scan</topicName>", "<topicName>my scan</topicName>",
+                             "<topicName>my", ["<topicName>", "'my scan' is not a ROS name"]),
+    "topic_too_long": ("<topicName>scan</topicName>", "<topicName>%s</topicName>" % ("s" * 300),
+                       "<topicName>sss", ["<topicName>", "topicName is 300 characters, more "
+                                                         "than the 256 allowed"]),
+    "frame_too_long": ("<odometryFrame>odom</odometryFrame>",
+                       "<odometryFrame>%s</odometryFrame>" % ("o" * 300), "<odometryFrame>",
+                       ["odometryFrame is 300 characters, more than the 256 allowed"]),
+    "plugin_name_too_long": ('name="imu_plugin"', 'name="%s"' % ("i" * 300), 'name="iii',
+                             ["<plugin>: name is 300 characters, more than the 256 allowed"]),
+}
+HUGE_CAMERA = {
+    "width_5000": ("<width>640</width>", "<width>5000</width>", "<width>",
+                   ["sensor 'front_camera' <width>", "width 5000 is outside [1, 4096] px"]),
+    "far_1e300": ("<far>100</far>", "<far>1e300</far>", "<far>",
+                  ["<far>", "far 1e+300 must be positive, at most 1e+06 m"]),
+    "camera_rate_tiny": ("<update_rate>30</update_rate>", "<update_rate>1e-300</update_rate>",
+                         "<update_rate>1e-300", ["<update_rate>", "1e-300 is outside"]),
+    "baseline_1e300": ("<cameraName>camera</cameraName>",
+                       "<cameraName>camera</cameraName><hackBaseline>1e300</hackBaseline>",
+                       "<cameraName>", ["<hackBaseline>", "hackBaseline 1e+300 is outside "
+                                                          "[-10000, 10000] m"]),
 }
 
 
@@ -397,6 +479,16 @@ def test_bad_block_is_one_line_naming_file_line_and_element(tmp_path, case):
 @pytest.mark.parametrize("case", list(BAD_CAMERA))
 def test_bad_camera_block_is_one_line_naming_file_line_and_element(tmp_path, case):
     check_error(tmp_path, with_camera(burger_text()), *BAD_CAMERA[case])
+
+
+@pytest.mark.parametrize("case", list(HUGE))
+def test_huge_tiny_and_long_values_are_refused_at_parse_time(tmp_path, case):
+    check_error(tmp_path, burger_text(), *HUGE[case])
+
+
+@pytest.mark.parametrize("case", list(HUGE_CAMERA))
+def test_huge_camera_values_are_refused_at_parse_time(tmp_path, case):
+    check_error(tmp_path, with_camera(burger_text()), *HUGE_CAMERA[case])
 
 
 def test_ray_sensor_without_ray_is_an_error(tmp_path):

@@ -1,4 +1,4 @@
-"""The keyboard teleop's state machine (doc/turtlebot3.md 5.2): keys, ramping, scaling, force stop,
+"""The keyboard teleop's state machine (doc/turtlebot3.md 5.1): keys, ramping, scaling, force stop,
 smooth stop, the model's limits, the printed text. No ROS master, no terminal.
 Units: m/s, rad/s."""
 import pytest

@@ -45,7 +45,9 @@ class RobotTopics:
 
     def __init__(self, robot, make_publisher, tf_publisher):
         """``make_publisher(topic, type, queue_size=1)`` gives a (non-blocking) publisher;
-        ``tf_publisher``: the node's one publisher of tf2_msgs/TFMessage on /tf."""
+        ``tf_publisher``: the node's one publisher of tf2_msgs/TFMessage on /tf. Whatever
+        fails on the way (a topic ROS refuses, a message that cannot be built) is raised
+        after every topic made so far is taken back: nothing of the robot is left behind."""
         self.robot = robot
         self.namespace = robot.namespace
         self.prefix = frame_prefix(robot.namespace)
@@ -54,8 +56,24 @@ class RobotTopics:
         self.pubs = {}
         self.publishers = {}   # what the robot's schedules name (SimRobot.due), by name
         self.services = []
+        self.subscriber = None
+        self.camera = None
+        self._advertised = []  # every publisher made for this robot, the camera's too
         # sensor readings published, for ~performance_metrics (world_api)
         self.sensor_updates = {"scan": 0, "imu": 0, "camera": 0}
+
+        def advertise(topic, msg_type, queue_size=1):
+            publisher = make_publisher(topic, msg_type, queue_size=queue_size)
+            self._advertised.append(publisher)
+            return publisher
+        try:
+            self._advertise(advertise)
+        except Exception:
+            self.close()
+            raise
+
+    def _advertise(self, make_publisher) -> None:
+        robot = self.robot
         drive, laser, imu = robot.drive_plugin, robot.laser_sensor, robot.imu_plugin
         if "odom" in robot.schedules:
             self.pubs["odom"] = make_publisher(self.topic(drive.odometry_topic, drive), Odometry)
@@ -72,16 +90,15 @@ class RobotTopics:
             self.publishers["imu"] = self._publish_imu
             self.services.append(rospy.Service(self.topic(imu.service_name, imu), Empty,
                                                lambda _request: EmptyResponse()))
-        self.camera = None
         if robot.camera is not None:
             self.camera = CameraPublisher(robot, make_publisher, self.namespace, self.prefix)
             self.publishers["camera"] = self._publish_camera
             self._frame_pubs = (self.camera.image_pubs + self.camera.jpeg_pubs
                                 + self.camera.depth_pubs + self.camera.points_pubs)
         self._build_messages()
-        self.subscriber = (rospy.Subscriber(self.topic(drive.command_topic, drive), Twist,
-                                            self._on_cmd_vel, queue_size=1)
-                           if drive else None)
+        if drive:
+            self.subscriber = rospy.Subscriber(self.topic(drive.command_topic, drive), Twist,
+                                               self._on_cmd_vel, queue_size=1)
 
     def topic(self, name: str, plugin) -> str:
         """A plugin's topic name resolved in its <robotNamespace>, else in the robot's
@@ -93,17 +110,12 @@ class RobotTopics:
         return self.prefix + name.lstrip("/")
 
     def close(self) -> None:
-        """Unadvertise every topic of the robot (delete_model)."""
+        """Unadvertise every topic and service of the robot (delete_model)."""
         if self.subscriber is not None:
             self.subscriber.unregister()
         for service in self.services:
             service.shutdown()
-        pubs = list(self.pubs.values())
-        if self.camera is not None:
-            camera = self.camera
-            pubs += (camera.image_pubs + camera.info_pubs + camera.jpeg_pubs + camera.depth_pubs
-                     + camera.points_pubs)
-        for pub in pubs:
+        for pub in self._advertised:
             pub.unregister()
 
     # --- messages --------------------------------------------------------------------------------

@@ -72,6 +72,7 @@ from ..sim.pacing import Pacer, check_rtf
 from .robot_topics import RobotTopics
 from .single_instance import refuse_if_running
 from ..sim.simulation import SimConfig, Simulation
+from ..sim.world_models import RequestError
 from ..sim.world_sdf import world_from_command_line
 
 SHUTDOWN_CHECK_STEPS = 200
@@ -95,6 +96,9 @@ SEND_AT_ONCE = ("scan", "camera")
 # As fast as possible, pybullet casts a laser's rays on this many threads (WorldPhysics.
 # ray_threads): the same hits, a 360-ray scan in about 60 % of the wall time.
 FAST_RAY_THREADS = 2
+# A robot output that fails (an exception making a scan, an image ...) is skipped and named in
+# one line, at most once this many wall seconds per robot and output.
+OUTPUT_ERROR_PERIOD = 10.0
 
 
 _private_params = None   # the node's private parameters, read from the master once
@@ -175,6 +179,7 @@ class SimNode:
         self.publishers = {"clock": self._publish_clock}   # the world's outputs
         self.robot_topics = {}                               # robot name -> RobotTopics
         self._topics = []
+        self._output_errors = {}   # (robot, output) -> the wall time its next error is logged
         self.sync_robots()
         for name, action in (("reset_simulation", sim.reset_simulation),
                              ("reset_world", sim.reset_world),
@@ -191,15 +196,27 @@ class SimNode:
 
     def sync_robots(self) -> None:
         """Give every robot of the simulation its topics, and take them from robots that are
-        gone (after spawn_urdf_model and delete_model; run in the loop)."""
+        gone (after spawn_urdf_model and delete_model; run in the loop). A robot whose topics
+        cannot be made is taken out of the world again, whatever of it was made (RobotTopics
+        takes its own topics back), and RequestError says why in one line."""
         for name in [n for n in self.robot_topics if n not in self.sim.robots]:
             self.robot_topics.pop(name).close()
-        for name, robot in self.sim.robots.items():
+        failed = None
+        for name, robot in list(self.sim.robots.items()):
             if name not in self.robot_topics:
+                try:
+                    self.robot_topics[name] = RobotTopics(robot, self._publisher, self.tf_pub)
+                except Exception as err:  # noqa: BLE001 - one robot must not end the node
+                    self.sim.models.remove(name)
+                    failed = failed or RequestError(
+                        "robot %r: its topics could not be made: %s: %s"
+                        % (name, type(err).__name__, " ".join(str(err).split())[:300]))
+                    continue
                 for warning in robot.warnings:
                     rospy.logwarn("%s: %s", name, warning)
-                self.robot_topics[name] = RobotTopics(robot, self._publisher, self.tf_pub)
         self._topics = list(self.robot_topics.values())   # what the loop walks every step
+        if failed is not None:
+            raise failed
 
     # --- messages --------------------------------------------------------------------------------
 
@@ -215,8 +232,24 @@ class SimNode:
         for robot, name in due:
             if robot is None:
                 self.publishers[name](stamp)
-            else:
-                self.robot_topics[robot.name].publishers[name](stamp)
+                continue
+            topics = self.robot_topics.get(robot.name)
+            if topics is None:   # (its topics could not be made: it is being taken out)
+                continue
+            try:
+                topics.publishers[name](stamp)
+            except Exception as err:  # noqa: BLE001 - one robot's output must not end the node
+                self._output_failed(robot.name, name, err)
+
+    def _output_failed(self, robot: str, output: str, err: Exception) -> None:
+        """One line about a robot's output that failed, at most once every OUTPUT_ERROR_PERIOD
+        wall seconds per robot and output; the loop goes on."""
+        key, now = (robot, output), time.monotonic()
+        if now < self._output_errors.get(key, -math.inf):
+            return
+        self._output_errors[key] = now + OUTPUT_ERROR_PERIOD
+        rospy.logerr("gazebo: robot %s: its %s failed and was skipped: %s: %s", robot, output,
+                     type(err).__name__, " ".join(str(err).split())[:300])
 
     def _publish_clock(self, stamp) -> None:
         # The sim's own rospy time follows its clock directly (see main: no /clock round trip).
@@ -463,7 +496,12 @@ def main() -> None:
         spec = sim.camera_spec
         rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
                       math.degrees(spec.hfov), spec.rate, sim.camera.renderer_name)
-    node = SimNode(sim, real_time_factor, paused, status_period, pub_clock_frequency)
+    try:
+        node = SimNode(sim, real_time_factor, paused, status_period, pub_clock_frequency)
+    except RequestError as err:   # the robot's topics (sync_robots)
+        rospy.logfatal("gazebo: %s", err)
+        sim.close()
+        sys.exit(2)
     # A restarted master is told again of every topic, service and robot description.
     MasterWatch(lambda: [robot.namespace for robot in list(sim.robots.values())]).start()
 

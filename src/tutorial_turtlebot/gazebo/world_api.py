@@ -295,7 +295,11 @@ class WorldApi:
                                    req.reference_frame, kind, req.robot_namespace)
             except RequestError as err:
                 return SpawnModelResponse(False, str(err))
-            self.node.sync_robots()  # a robot URDF: its plugins' topics
+            try:
+                self.node.sync_robots()  # a robot URDF: its plugins' topics
+            except RequestError as err:  # it is out of the world again
+                rospy.logerr("spawn_%s_model: %s", kind, err)
+                return SpawnModelResponse(False, "SpawnModel: Failure - %s" % err)
             return SpawnModelResponse(True, "SpawnModel: Successfully spawned entity")
         return spawn
 

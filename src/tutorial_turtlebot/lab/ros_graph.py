@@ -8,7 +8,7 @@ convention: the topic name with a leading space (``" /cmd_vel"``), so that a top
 of the same name stay apart.
 
 Output: a :class:`View` (what is drawn: vertices, namespace boxes, edges) made with
-rqt_graph's rules and defaults (doc/turtlebot3.md 9), written as rqt_graph's DOT text
+rqt_graph's rules and defaults (doc/turtlebot3.md 8), written as rqt_graph's DOT text
 (:func:`to_dot`; graphviz ``dot`` or ``xdot`` lay it out) or as a plain-text picture for
 terminals (:func:`to_text`).
 

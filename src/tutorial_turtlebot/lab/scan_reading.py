@@ -1,4 +1,4 @@
-"""Reading a planar laser scan the right way for a TurtleBot3 (doc/turtlebot3.md 2.2 and 7).
+"""Reading a planar laser scan the right way for a TurtleBot3 (doc/turtlebot3.md 2.2 and 6).
 
 A scan is anything with the LaserScan fields ``ranges`` (m), ``angle_min`` and
 ``angle_increment`` (rad), ``range_min`` and ``range_max`` (m): a sensor_msgs/LaserScan or a

@@ -1,4 +1,4 @@
-"""The keyboard teleop's key-to-twist state machine (doc/turtlebot3.md 5.2), with no terminal code.
+"""The keyboard teleop's key-to-twist state machine (doc/turtlebot3.md 5.1), with no terminal code.
 
 Call :meth:`Teleop.step` once per loop with the key read (None when the 0.1 s read timed out);
 it returns the (ramped) command to publish: linear m/s along +x, angular rad/s counter-clockwise.

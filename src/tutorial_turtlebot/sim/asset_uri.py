@@ -11,7 +11,9 @@ ROS plugins do.
   last because reading them means reading every package's manifest (about 0.1 s), which a
   world of stock models never needs.
 - A model folder holds ``model.config``, whose ``<sdf version="X">file</sdf>`` entries name one
-  SDF file per version; Gazebo 11 takes the highest version it reads (up to 1.7).
+  SDF file per version; Gazebo 11 takes the highest version it reads (up to 1.7), and never one
+  that is no version ("-1", "1.x"). model.config and the SDF file must be regular files
+  (file_read), model.config at most file_read.MAX_MODEL_CONFIG_BYTES.
 - ``package://PKG/rest`` is PKG's folder from rospkg, else a model folder called PKG.
 - ``file://path`` and a bare path are absolute, or relative to the folder of the file that
   names them.
@@ -21,6 +23,7 @@ import os
 from typing import Callable, Iterable, List, Optional, Sequence, Tuple
 
 from ..errors import WorldError
+from .file_read import MAX_MODEL_CONFIG_BYTES, not_regular, read_file
 from .package_data import data_dir
 
 PACKAGE_MODELS = data_dir("models")
@@ -161,10 +164,13 @@ def _package_path(package: str) -> Optional[str]:
 
 
 def _version(text: str) -> Tuple[int, ...]:
-    try:
-        return tuple(int(p) for p in text.strip().split("."))
-    except ValueError:
+    """An SDF version "1.6" as (1, 6, 0); () for what is no version (Gazebo's SemanticVersion
+    reads "-1", "1.x" or "" as 0.0.0, which it never takes)."""
+    parts = text.strip().split(".")
+    if not 1 <= len(parts) <= 3 or not all(p.isascii() and p.isdigit() for p in parts):
         return ()
+    version = tuple(int(p) for p in parts) + (0,) * (3 - len(parts))
+    return version if version > (0, 0, 0) else ()
 
 
 def model_sdf_file(model_dir: str, parse_xml) -> str:
@@ -173,22 +179,21 @@ def model_sdf_file(model_dir: str, parse_xml) -> str:
     line-numbered XML reader (xml_reader.parse raising the caller's error). AssetError if there
     is none."""
     config = os.path.join(model_dir, "model.config")
-    try:
-        with open(config, "rb") as f:
-            root = parse_xml(f.read(), config)
-    except OSError:
-        raise AssetError("%s has no model.config (a Gazebo model folder needs one)"
-                         % model_dir) from None
+    if not os.path.lexists(config):
+        raise AssetError("%s has no model.config (a Gazebo model folder needs one)" % model_dir)
+    root = parse_xml(read_file(config, MAX_MODEL_CONFIG_BYTES, "model.config", AssetError),
+                     config)
     entries = []
     for node in root.all("sdf"):
         version = _version(node.attrib.get("version", ""))
-        if node.value and version and version <= MAX_SDF_VERSION:
+        if node.value and version and version <= MAX_SDF_VERSION + (0,):
             entries.append((version, node.value))
     if not entries:
         raise AssetError("%s:%d: model.config names no <sdf version=\"1.x\">file</sdf> of "
                          "version 1.7 or older" % (config, root.line))
     _, name = max(entries)
     path = os.path.join(model_dir, name)
-    if not os.path.isfile(path):
-        raise AssetError("%s: its model.config names %s, which does not exist" % (model_dir, name))
+    why = not_regular(path)
+    if why is not None:
+        raise AssetError("%s: its model.config names %s: %s" % (model_dir, name, why))
     return path

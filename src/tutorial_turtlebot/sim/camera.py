@@ -22,6 +22,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from . import limits
 from .bullet import pybullet
 from ..errors import UserError
 from .robot_plugins import CameraSpec
@@ -40,7 +41,7 @@ EMPTY_ZBUFFER = 1.0 - 1e-6
 # (measured), half a pixel left of and below the centre that OpenGL and the
 # CameraInfo's pinhole use; its frustum is moved by this many pixels (right, up) to match.
 TINY_RENDERER_SHIFT = (0.5, 0.5)
-MAX_IMAGE_SIDE = 4096            # px: larger images are refused (renderer buffers, memory)
+MAX_IMAGE_SIDE = limits.MAX_IMAGE_SIDE   # px: larger images are refused
 # Gazebo's scene background of the TurtleBot3 worlds (<background>0.7 0.7 0.7 1</background>):
 # pixels that see no surface get it, with either renderer.
 BACKGROUND_RGB = (178, 178, 178)

@@ -1,9 +1,11 @@
-"""The physical limits every number entering the world is held to, and their one-line refusals.
+"""The limits every number and name entering the world is held to, and their one-line refusals.
 
-Every path that brings a number into the world (SDF and URDF files and spawn requests, the world
-API's services and topics, the physics properties, cmd_vel) checks it against these constants
-and words its refusal with ``outside``: the field, the value and the limit, in one line, so
-that the same fault reads the same whichever path it came by. No ROS and no pybullet here.
+Every path that brings a number into the world (SDF and URDF files and their robot plugins,
+meshes, spawn requests, the world API's services and topics, the physics properties, cmd_vel)
+checks it against these constants and words its refusal with ``outside``: the field, the value
+and the limit, in one line, so that the same fault reads the same whichever path it came by.
+Names and string fields are held to ``MAX_NAME`` characters (``name_problem``). No ROS and no
+pybullet here.
 
 The limits are far beyond anything a TurtleBot world holds and far inside what Bullet can
 step: a body farther than ~1e6 m or larger than ~1e6 m has an AABB Bullet takes out of the
@@ -19,7 +21,8 @@ MAX_ANGULAR_SPEED = 1e3     # rad/s: a component of an angular velocity
 MAX_MASS = 1e6              # kg
 MAX_INERTIA = 1e6           # kg m^2: a moment (or product) of inertia
 MAX_SIZE = 1e4              # m: a box side, a radius, a length, a plane's side, a height
-MAX_SCALE = 1e4             # a mesh's scale factor (its magnitude; negative mirrors)
+MAX_SCALE = 1e4             # a scale factor: a mesh's (its magnitude; negative mirrors), a scan's
+                            # resolution
 MAX_FRICTION = 1e6          # a friction coefficient
 MAX_FORCE = 1e6             # N (and N m for a torque, N or N m for a joint effort)
 MAX_JOINT_POSITION = 1e6    # rad or m: a joint position (set_model_configuration)
@@ -28,6 +31,17 @@ MAX_SOLVER_ITERATIONS = 1000    # sor_pgs_iters, sor_pgs_precon_iters
 MAX_CONTACTS = 1000         # max_contacts
 MAX_ODE_VALUE = 1e6         # the other ODE fields (cfm, rms error tol, correcting vel, layer)
 MAX_DURATION_NS = 10 ** 18  # ns: a wrench's or effort's start or duration (~31 years)
+# A robot's <gazebo> plugins and sensors (robot_plugins)
+MAX_RATE = 1e6              # Hz: an update rate (beyond the physics' own: every physics step)
+MIN_RATE = 1e-6             # Hz: the slowest update rate but 0 (0: every physics step)
+MAX_RANGE = 1e6             # m: a sensor's range, clip plane or cut-off
+MAX_LASER_SAMPLES = 3600    # rays per scan (0.1 degree steps), as the lidar_samples argument
+MAX_IMAGE_SIDE = 4096       # px: a camera image's width or height (renderer buffers, memory)
+MAX_NOISE = 1e3             # a noise's mean or standard deviation, in its sensor's unit
+MAX_ACCELERATION = 1e6      # m/s^2: a wheel's acceleration
+MIN_WHEEL_DIAMETER = 0.01   # m: a diff drive's wheel (its spin is the speed over the radius)
+# Names (models, links, joints, frames, namespaces, topics) and the other string fields
+MAX_NAME = 256              # characters
 
 
 def _g(value) -> str:
@@ -102,6 +116,23 @@ def scale_problem(values: Sequence[float], field: str = "scale") -> Optional[str
         problem = outside(field, v, -MAX_SCALE, MAX_SCALE)
         if problem or v == 0:
             return problem or "%s 0 must not be zero" % field
+    return None
+
+
+def rate_problem(field: str, value) -> Optional[str]:
+    """An update rate: 0 (every physics step) or MIN_RATE..MAX_RATE Hz."""
+    if isinstance(value, (int, float)) and value == 0:
+        return None
+    problem = outside(field, value, MIN_RATE, MAX_RATE, "Hz")
+    return problem and problem + " (or 0: every physics step)"
+
+
+def name_problem(field: str, name) -> Optional[str]:
+    """A name or string field: text of at most MAX_NAME characters."""
+    if not isinstance(name, str):
+        return "%s must be text, not %s" % (field, type(name).__name__)
+    if len(name) > MAX_NAME:
+        return "%s is %d characters, more than the %d allowed" % (field, len(name), MAX_NAME)
     return None
 
 

@@ -13,14 +13,18 @@ libgazebo_ros_camera, a depth sensor with libgazebo_ros_openni_kinect. Everythin
 accepted as it is (surface and material settings, an imu sensor without plugin, a sensor
 without ROS plugin, which publishes nothing on ROS in Gazebo either) or named in one warning
 (an unknown plugin or sensor, a second laser or camera, a plugin on the wrong kind of sensor, a
-parameter the plugin does not have). Wrong values raise a one-line UrdfError.
+parameter the plugin does not have). Wrong values raise a one-line UrdfError: every number is
+held to its limit in ``limits`` (rates, ranges, samples, image sizes, noise, wheels, torque,
+poses), every name and topic to ``limits.MAX_NAME`` characters, topics to ROS's characters.
 """
 import math
 import os
+import re
 from dataclasses import dataclass
-from typing import Collection, Dict, List, Mapping, Optional, Tuple
+from typing import Collection, Dict, List, Mapping, NamedTuple, Optional, Tuple
 
 from ..errors import UrdfError
+from . import limits
 from .kinematics import ZERO_XYZ_RPY, XyzRpy
 from .lidar import LaserConfig
 from .xml_reader import Element, XmlReader
@@ -226,6 +230,7 @@ class _PluginReader(XmlReader):
 
     def read(self, robot) -> RobotPlugins:
         for block in robot.findall("gazebo"):
+            self._check_attributes(block)
             reference = block.get("reference", "").strip()
             if reference:
                 self._reference_block(block, reference)
@@ -234,6 +239,15 @@ class _PluginReader(XmlReader):
         return RobotPlugins(self.drive, self.laser, self.imu, self.camera, tuple(self.warnings))
 
     # --- blocks ---------------------------------------------------------------------------
+
+    def _check_attributes(self, block) -> None:
+        """Every attribute in ``block`` (reference, names, filenames, types) is at most
+        limits.MAX_NAME characters, before any message names one."""
+        for elem in block.iter():
+            for key, value in elem.attrib.items():
+                problem = limits.name_problem(key, value)
+                if problem:
+                    self.fail_bare(elem, "<%s>: %s" % (elem.tag, problem))
 
     def _model_block(self, block) -> None:
         """<gazebo> without reference: model plugins. Model properties (static, self_collide,
@@ -323,28 +337,28 @@ class _PluginReader(XmlReader):
         source_elem = elem.find("odometrySource")
         source = "world"
         if source_elem is not None:
-            source = self._text(source_elem)
+            source = self._string(elem, "odometrySource", "world")
             if source not in ("world", "encoder"):
                 self.fail(source_elem, "must be world or encoder, got %r" % source, elem)
         number = self._number
         return DiffDrivePlugin(
             name=name,
-            command_topic=self._string(elem, "commandTopic", "cmd_vel"),
-            odometry_topic=self._string(elem, "odometryTopic", "odom"),
+            command_topic=self._topic(elem, "commandTopic", "cmd_vel"),
+            odometry_topic=self._topic(elem, "odometryTopic", "odom"),
             odometry_frame=self._string(elem, "odometryFrame", "odom"),
             robot_base_frame=self._string(elem, "robotBaseFrame", "base_footprint"),
             odometry_source="encoders" if source == "encoder" else "world",
             publish_tf=self._bool(elem, "publishTf", True),
             publish_wheel_tf=self._bool(elem, "publishWheelTF", False),
             publish_wheel_joint_state=self._bool(elem, "publishWheelJointState", False),
-            update_rate=number(elem, "updateRate", 100.0, elem, _non_negative),
+            update_rate=self._rate(elem, "updateRate", 100.0, elem),
             left_joint=self._wheel_joint(elem, "leftJoint", "left_joint"),
             right_joint=self._wheel_joint(elem, "rightJoint", "right_joint"),
-            wheel_separation=number(elem, "wheelSeparation", 0.34, elem, _positive),
-            wheel_diameter=number(elem, "wheelDiameter", 0.15, elem, _positive),
-            wheel_acceleration=number(elem, "wheelAcceleration", 0.0, elem, _non_negative),
-            wheel_torque=number(elem, "wheelTorque", 5.0, elem, _positive),
-            robot_namespace=self._string(elem, "robotNamespace", ""),
+            wheel_separation=number(elem, "wheelSeparation", 0.34, elem, _SIZE),
+            wheel_diameter=number(elem, "wheelDiameter", 0.15, elem, _WHEEL_DIAMETER),
+            wheel_acceleration=number(elem, "wheelAcceleration", 0.0, elem, _ACCELERATION),
+            wheel_torque=number(elem, "wheelTorque", 5.0, elem, _TORQUE),
+            robot_namespace=self._topic(elem, "robotNamespace", ""),
             publish_odom_tf=self._bool(elem, "publishOdomTF", True))
 
     def _imu(self, elem, name) -> ImuPlugin:
@@ -356,11 +370,11 @@ class _PluginReader(XmlReader):
         return ImuPlugin(
             name=name, body_name=body,
             frame_name=self._link(elem, "frameName", "", elem),
-            topic=self._string(elem, "topicName", "/default_imu"),
-            service_name=self._string(elem, "serviceName", "/default_imu"),
-            update_rate=self._number(elem, "updateRate", 0.0, elem, _non_negative),
-            gaussian_noise=self._number(elem, "gaussianNoise", 0.0, elem, _non_negative),
-            robot_namespace=self._string(elem, "robotNamespace", ""))
+            topic=self._topic(elem, "topicName", "/default_imu"),
+            service_name=self._topic(elem, "serviceName", "/default_imu"),
+            update_rate=self._rate(elem, "updateRate", 0.0, elem),
+            gaussian_noise=self._number(elem, "gaussianNoise", 0.0, elem, _NOISE),
+            robot_namespace=self._topic(elem, "robotNamespace", ""))
 
     def _laser(self, sensor, plugin, link) -> LaserSensor:
         filename = plugin_file(plugin.get("filename", ""))
@@ -368,42 +382,42 @@ class _PluginReader(XmlReader):
         ray = self.child(sensor, "ray")
         scan = ray.find("scan")
         horizontal = scan.find("horizontal") if scan is not None else None
-        samples = self._integer(horizontal, "samples", 640, sensor)
-        self._number(horizontal, "resolution", 1.0, sensor, _positive)
-        angle_min = self._number(horizontal, "min_angle", 0.0, sensor)
-        angle_max = self._number(horizontal, "max_angle", 0.0, sensor)
+        samples = self._integer(horizontal, "samples", 640, sensor, limits.MAX_LASER_SAMPLES)
+        self._number(horizontal, "resolution", 1.0, sensor, _FACTOR)
+        angle_min = self._number(horizontal, "min_angle", 0.0, sensor, _ANGLE)
+        angle_max = self._number(horizontal, "max_angle", 0.0, sensor, _ANGLE)
         if angle_min >= angle_max:
             self.fail(self._find(horizontal, "max_angle", sensor),
                        "max_angle %g must be greater than min_angle %g" % (angle_max, angle_min),
                        sensor)
         vertical = scan.find("vertical") if scan is not None else None
-        if vertical is not None and self._integer(vertical, "samples", 1, sensor) > 1:
+        if vertical is not None and self.integer(vertical, "samples", 1, sensor) > 1:
             self._warn("%s: a scan of several vertical planes is not simulated; only the "
                        "horizontal plane is" % self._sensor_id(sensor))
         ranges = self.child(ray, "range", sensor)
-        range_min = self._number(ranges, "min", 0.0, sensor, _non_negative)
+        range_min = self._number(ranges, "min", 0.0, sensor, _DISTANCE)
         if ranges.find("max") is None:
             self.fail(ranges, "missing <max>", sensor)
-        range_max = self._number(ranges, "max", 0.0, sensor)
+        range_max = self._number(ranges, "max", 0.0, sensor, _DISTANCE)
         if range_min >= range_max:
             self.fail(ranges.find("max"), "max %g must be greater than min %g"
                        % (range_max, range_min), sensor)
         sigma = self._noise(ray.find("noise"), sensor)
-        rate = self._number(sensor, "update_rate", 0.0, sensor, _non_negative)
+        rate = self._rate(sensor, "update_rate", 0.0, sensor)
         increment = (angle_max - angle_min) / (samples - 1) if samples > 1 else 0.0
         config = LaserConfig("gazebo", angle_min, angle_max, increment, samples=samples,
                              range_min=range_min, range_max=range_max, noise_sigma=sigma,
                              rate=rate)
         return LaserSensor(
             name=sensor.get("name"), link=link, laser=config,
-            topic=self._string(plugin, "topicName", "/world"),
+            topic=self._topic(plugin, "topicName", "/world"),
             # gazebo_ros_laser's default frame is "/world", which is in no robot's TF tree;
             # the sensor's own link is what a scan without <frameName> is meant to be in.
             frame=self._link(plugin, "frameName", link, plugin),
             plugin=plugin.get("name", "").strip(),
-            robot_namespace=self._string(plugin, "robotNamespace", ""),
+            robot_namespace=self._topic(plugin, "robotNamespace", ""),
             plugin_file=filename, pose=self._pose(sensor),
-            range_resolution=self._number(ranges, "resolution", 0.0, sensor, _non_negative))
+            range_resolution=self._number(ranges, "resolution", 0.0, sensor, _DISTANCE))
 
     def _noise(self, noise, sensor) -> float:
         """The gaussian sigma (m) of a <ray><noise>; 0 without one."""
@@ -413,8 +427,8 @@ class _PluginReader(XmlReader):
         if kind not in NOISE_TYPES:
             self.fail(noise.find("type"), "must be one of %s, got %r"
                        % (", ".join(NOISE_TYPES), kind), sensor)
-        mean = self._number(noise, "mean", 0.0, sensor)
-        sigma = self._number(noise, "stddev", 0.0, sensor, _non_negative)
+        mean = self._number(noise, "mean", 0.0, sensor, _NOISE_MEAN)
+        sigma = self._number(noise, "stddev", 0.0, sensor, _NOISE)
         if kind == "none":
             return 0.0
         if mean != 0.0:
@@ -429,21 +443,21 @@ class _PluginReader(XmlReader):
         camera = sensor.find("camera")
         image = camera.find("image") if camera is not None else None
         clip = camera.find("clip") if camera is not None else None
-        hfov = self._number(camera, "horizontal_fov", 1.047, sensor, _field_of_view)
-        width = self._integer(image, "width", 320, sensor)
-        height = self._integer(image, "height", 240, sensor)
+        hfov = self._number(camera, "horizontal_fov", 1.047, sensor, _FIELD_OF_VIEW)
+        width = self._integer(image, "width", 320, sensor, limits.MAX_IMAGE_SIDE, "px")
+        height = self._integer(image, "height", 240, sensor, limits.MAX_IMAGE_SIDE, "px")
         image_format = self._string(image, "format", "R8G8B8")
         if image_format != "R8G8B8":
             self._warn("%s: image format %r is not simulated; the images are R8G8B8 (rgb8)"
                        % (self._sensor_id(sensor), image_format))
-        near = self._number(clip, "near", 0.1, sensor, _positive)
-        far = self._number(clip, "far", 100.0, sensor, _positive)
+        near = self._number(clip, "near", 0.1, sensor, _REACH)
+        far = self._number(clip, "far", 100.0, sensor, _REACH)
         if near >= far:
             self.fail(self._find(clip, "far", sensor),
                        "far %g must be greater than near %g" % (far, near), sensor)
-        plugin_rate = self._number(plugin, "updateRate", 0.0, plugin, _non_negative)
-        sensor_rate = self._number(sensor, "update_rate", 0.0, sensor, _non_negative)
-        distortion = [self._number(plugin, key, 0.0, plugin) for key in (
+        plugin_rate = self._rate(plugin, "updateRate", 0.0, plugin)
+        sensor_rate = self._rate(sensor, "update_rate", 0.0, sensor)
+        distortion = [self.number(plugin, key, 0.0, plugin) for key in (   # not simulated
             "distortionK1", "distortionK2", "distortionK3", "distortionT1", "distortionT2")]
         if any(distortion):
             self._warn("%s: lens distortion is not simulated; the images are undistorted"
@@ -452,30 +466,31 @@ class _PluginReader(XmlReader):
                           rate=plugin_rate if plugin_rate > 0 else sensor_rate,
                           near=near, far=far, depth=depth,
                           # the first <hackBaseline> counts, as sdformat's GetElement finds it
-                          baseline=self._number(plugin, "hackBaseline", 0.0, plugin))
+                          baseline=self._number(plugin, "hackBaseline", 0.0, plugin,
+                                                _BASELINE))
         extra: Dict[str, object] = {}
         if depth:
-            cutoff = self._number(plugin, "pointCloudCutoff", 0.4, plugin, _non_negative)
-            cutoff_max = self._number(plugin, "pointCloudCutoffMax", 5.0, plugin)
+            cutoff = self._number(plugin, "pointCloudCutoff", 0.4, plugin, _DISTANCE)
+            cutoff_max = self._number(plugin, "pointCloudCutoffMax", 5.0, plugin, _DISTANCE)
             if cutoff_max <= cutoff:
                 self.fail(self._find(plugin, "pointCloudCutoffMax", plugin),
                            "pointCloudCutoffMax %g must be greater than pointCloudCutoff %g"
                            % (cutoff_max, cutoff), plugin)
             extra = dict(
-                depth_image_topic=self._string(plugin, "depthImageTopicName", "depth/image_raw"),
-                depth_info_topic=self._string(plugin, "depthImageCameraInfoTopicName",
-                                              "depth/camera_info"),
-                point_cloud_topic=self._string(plugin, "pointCloudTopicName", "points"),
+                depth_image_topic=self._topic(plugin, "depthImageTopicName", "depth/image_raw"),
+                depth_info_topic=self._topic(plugin, "depthImageCameraInfoTopicName",
+                                             "depth/camera_info"),
+                point_cloud_topic=self._topic(plugin, "pointCloudTopicName", "points"),
                 point_cloud_cutoff=cutoff, point_cloud_cutoff_max=cutoff_max)
         return CameraSensor(
             name=sensor.get("name"), link=link, spec=spec, plugin_file=filename,
-            camera_name=self._string(plugin, "cameraName", ""),
+            camera_name=self._topic(plugin, "cameraName", ""),
             # gazebo_ros_camera_utils' default frame is "/world", in no robot's TF tree; the
             # sensor's link is what an image without <frameName> is meant to be in.
             frame=self._link(plugin, "frameName", link, plugin),
-            image_topic=self._string(plugin, "imageTopicName", "image_raw"),
-            info_topic=self._string(plugin, "cameraInfoTopicName", "camera_info"),
-            robot_namespace=self._string(plugin, "robotNamespace", ""),
+            image_topic=self._topic(plugin, "imageTopicName", "image_raw"),
+            info_topic=self._topic(plugin, "cameraInfoTopicName", "camera_info"),
+            robot_namespace=self._topic(plugin, "robotNamespace", ""),
             pose=self._pose(sensor), **extra)
 
     # --- values ------------------------------------------------------------------------------
@@ -499,37 +514,71 @@ class _PluginReader(XmlReader):
         return elem if elem is not None else (parent if parent is not None else owner)
 
     def _string(self, parent, tag, default: str) -> str:
+        """The text of the optional child <tag>: at most limits.MAX_NAME characters."""
         elem = parent.find(tag) if parent is not None else None
-        return default if elem is None else elem.value
+        if elem is None:
+            return default
+        problem = limits.name_problem(tag, elem.value)
+        if problem:
+            self.fail(elem, problem, parent)
+        return elem.value
 
-    def _number(self, parent, tag, default: float, owner, rule=None) -> float:
+    def _topic(self, parent, tag, default: str) -> str:
+        """A topic, service or namespace name: a ROS name (letters, digits, _ and /)."""
+        name = self._string(parent, tag, default)
+        if not _ROS_NAME.match(name) or "//" in name:
+            self.fail(parent.find(tag), "%r is not a ROS name (a letter, / or ~ first, then "
+                                        "letters, digits, _ and /)" % name, parent)
+        return name
+
+    def _number(self, parent, tag, default: float, owner, bounds: "_Bounds") -> float:
+        """The number of the optional child <tag> within ``bounds``: limits' one-line refusal
+        otherwise."""
         value = self.number(parent, tag, default, owner)
-        if rule is not None and not rule[0](value):
-            self.fail(self._find(parent, tag, owner), "must be %s, got %g" % (rule[1], value),
-                      owner)
+        problem = limits.outside(tag, value, *bounds)
+        if problem:
+            self.fail(self._find(parent, tag, owner), problem, owner)
         return value
 
-    def _integer(self, parent, tag, default: int, owner) -> int:
-        return self.integer(parent, tag, default, owner)
+    def _rate(self, parent, tag, default: float, owner) -> float:
+        """An update rate (Hz): 0 or within limits.rate_problem's range."""
+        value = self.number(parent, tag, default, owner)
+        problem = limits.rate_problem(tag, value)
+        if problem:
+            self.fail(self._find(parent, tag, owner), problem, owner)
+        return value
+
+    def _integer(self, parent, tag, default: int, owner, high: int, unit: str = "") -> int:
+        """The positive integer of the optional child <tag>, at most ``high``."""
+        value = self.integer(parent, tag, default, owner)
+        problem = limits.outside(tag, value, 1, high, unit)
+        if problem:
+            self.fail(self._find(parent, tag, owner), problem, owner)
+        return value
 
     def _bool(self, parent, tag, default: bool) -> bool:
         return self.flag(parent, tag, default, parent)
 
     def _pose(self, sensor) -> XyzRpy:
-        return tuple(self.xyz_rpy(sensor, "pose", ZERO_XYZ_RPY, sensor))
+        pose = tuple(self.xyz_rpy(sensor, "pose", ZERO_XYZ_RPY, sensor))
+        problem = (limits.position_problem("pose", pose[:3])
+                   or limits.angles_problem("pose", pose[3:]))
+        if problem:
+            self.fail(sensor.find("pose"), problem, sensor)
+        return pose
 
     def _link(self, parent, tag, default: str, owner) -> str:
         elem = parent.find(tag)
         if elem is None:
             return default
-        name = _strip_slash(self._text(elem))
+        name = _strip_slash(self._string(parent, tag, default))
         if name not in self.links:
             self.fail(elem, "%r is not a link of this robot" % self._text(elem), owner)
         return name
 
     def _wheel_joint(self, plugin, tag, default: str) -> str:
         elem = plugin.find(tag)
-        name = default if elem is None else self._text(elem)
+        name = self._string(plugin, tag, default)
         wheels = [j for j, kind in self.joint_types.items() if kind in WHEEL_JOINT_TYPES]
         hint = "its continuous and revolute joints: %s" % (", ".join(wheels) or "none")
         if elem is None and name not in self.joint_types:
@@ -582,8 +631,27 @@ class _PluginReader(XmlReader):
     def _warn(self, message: str) -> None:
         self.warnings.append(message)
 
-# --- value converters and rules (a rule: (predicate, what it must be)) -------------------------
+# --- the bounds of the numbers (limits.outside's arguments) ------------------------------------
 
-_positive = (lambda v: v > 0, "> 0")
-_non_negative = (lambda v: v >= 0, ">= 0")
-_field_of_view = (lambda v: 0 < v < math.pi, "between 0 and pi rad")
+class _Bounds(NamedTuple):
+    low: float
+    high: float
+    unit: str = ""
+    low_open: bool = False
+    high_open: bool = False
+
+
+_DISTANCE = _Bounds(0.0, limits.MAX_RANGE, "m")             # a range, a resolution, a cut-off
+_REACH = _Bounds(0.0, limits.MAX_RANGE, "m", low_open=True)  # a clip plane
+_ANGLE = _Bounds(-limits.MAX_ANGLE, limits.MAX_ANGLE, "rad")
+_FIELD_OF_VIEW = _Bounds(0.0, math.pi, "rad", low_open=True, high_open=True)
+_FACTOR = _Bounds(0.0, limits.MAX_SCALE, low_open=True)
+_NOISE = _Bounds(0.0, limits.MAX_NOISE)                      # a standard deviation
+_NOISE_MEAN = _Bounds(-limits.MAX_NOISE, limits.MAX_NOISE)
+_SIZE = _Bounds(0.0, limits.MAX_SIZE, "m", low_open=True)
+_WHEEL_DIAMETER = _Bounds(limits.MIN_WHEEL_DIAMETER, limits.MAX_SIZE, "m")
+_ACCELERATION = _Bounds(0.0, limits.MAX_ACCELERATION, "m/s^2")
+_TORQUE = _Bounds(0.0, limits.MAX_FORCE, "N m", low_open=True)
+_BASELINE = _Bounds(-limits.MAX_SIZE, limits.MAX_SIZE, "m")
+# A ROS graph resource name, as rosgraph.names.is_legal_name has it ("" is the namespace itself).
+_ROS_NAME = re.compile(r"^([~/A-Za-z][A-Za-z0-9_/]*)?$")

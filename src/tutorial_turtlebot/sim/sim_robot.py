@@ -13,6 +13,7 @@ from typing import Dict, List, Optional, Tuple
 import numpy as np
 
 from . import kinematics
+from . import limits
 from .camera import CameraRenderer, validate_spec
 from .diff_drive import SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController, sanitize_command
 from .lidar import LASER_MODELS, LaserConfig, as_real_driver, ranges_from_distances, \
@@ -37,8 +38,12 @@ _NAMESPACE = re.compile(r"^/?([A-Za-z][A-Za-z0-9_]*/)*([A-Za-z][A-Za-z0-9_]*)?/?
 
 def normalize_namespace(namespace: str) -> str:
     """``"tb3_0"``, ``"/tb3_0/"`` -> ``"/tb3_0/"``; ``""`` and ``"/"`` -> ``""`` (the root);
-    UserError for a name ROS does not allow (graph resource names: letters, digits, _, /)."""
-    if not isinstance(namespace, str) or not _NAMESPACE.match(namespace) or "//" in namespace:
+    UserError for a name ROS does not allow (graph resource names: letters, digits, _, /) or
+    one longer than limits.MAX_NAME."""
+    problem = limits.name_problem("robot_namespace", namespace)
+    if problem:
+        raise UserError(problem)
+    if not _NAMESPACE.match(namespace) or "//" in namespace:
         raise UserError("robot_namespace %r is not a legal ROS namespace (a letter, then "
                         "letters, digits and _, parts joined by /)" % (namespace,))
     parts = namespace.strip("/")
@@ -66,9 +71,10 @@ class RobotOptions:
             raise UserError("unknown odom_source %r: valid are %s"
                             % (self.odom_source, ", ".join(ODOM_SOURCES)))
         if self.lidar_samples is not None and not (
-                isinstance(self.lidar_samples, int) and 2 <= self.lidar_samples <= 3600):
-            raise UserError("lidar_samples must be an integer in 2..3600, got %r"
-                            % (self.lidar_samples,))
+                isinstance(self.lidar_samples, int)
+                and 2 <= self.lidar_samples <= limits.MAX_LASER_SAMPLES):
+            raise UserError("lidar_samples must be an integer in 2..%d, got %r"
+                            % (limits.MAX_LASER_SAMPLES, self.lidar_samples))
 
 
 def with_samples(laser: LaserConfig, samples: int) -> LaserConfig:

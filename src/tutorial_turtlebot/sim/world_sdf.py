@@ -30,6 +30,7 @@ from ..errors import UserError, WorldError
 from . import limits
 from . import xml_reader
 from .asset_uri import AssetError, model_sdf_file, resolve_uri
+from .file_read import not_regular
 from .kinematics import ZERO_XYZ_RPY, XyzRpy, compose_xyz_rpy, rpy_from_matrix
 from .package_data import data_dir
 from .xml_reader import Element, XmlReader
@@ -374,6 +375,9 @@ class _Loader(XmlReader):
             sdf = model_sdf_file(found, parse_xml) if os.path.isdir(found) else found
         except AssetError as err:
             self.fail_bare(node, "<include>: %s" % err)
+        why = not_regular(sdf)     # /dev/stdin or a FIFO would wait for ever, /dev/zero fill
+        if why is not None:        # the memory (file_read)
+            self.fail_bare(node, "<include> of %s: %s: %s" % (uri, sdf, why))
         root = _parse_xml(sdf)
         models = root.all("model")
         if len(models) != 1:

@@ -16,6 +16,7 @@ from xml.etree import ElementTree
 from xml.parsers import expat
 
 from ..errors import UserError
+from .file_read import MAX_XML_FILE_BYTES, read_file
 
 MAX_DEPTH = 64          # elements nested deeper than this are refused (no real model nests so)
 
@@ -102,13 +103,9 @@ def parse(data: Union[str, bytes], source: str, error: Type[UserError] = UserErr
 
 def parse_file(path: str, what: str, error: Type[UserError] = UserError) -> Element:
     """The root Element of the XML file at ``path``; ``error`` for a file that cannot be read
-    ("<path>: cannot read <what>: <why>") or any problem of ``parse``."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as err:
-        raise error("%s: cannot read %s: %s" % (path, what, err.strerror)) from None
-    return parse(data, path, error)
+    ("<path>: cannot read <what>: <why>": also one that is not a regular file or is larger
+    than file_read.MAX_XML_FILE_BYTES) or any problem of ``parse``."""
+    return parse(read_file(path, MAX_XML_FILE_BYTES, what, error), path, error)
 
 
 def numbers(text: str, count: int, finite: bool = True) -> Optional[Tuple[float, ...]]:
