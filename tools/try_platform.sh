@@ -69,13 +69,14 @@ stop_root_processes() {
       root=$(readlink "$pid/root" 2>/dev/null || true)
       if [ "$root" = "$FS" ]; then kill "-$signal" "${pid#/proc/}" 2>/dev/null || true; fi
     done
-    [ "$signal" = TERM ] && sleep 2
+    if [ "$signal" = TERM ]; then sleep 2; fi
   done
 }
 # shellcheck disable=SC2317  # the EXIT trap
 cleanup() {
   local status=$?
   trap - EXIT INT TERM
+  set +e
   if [ ${#MOUNTED[@]} -gt 0 ]; then
     stop_root_processes
     local i
