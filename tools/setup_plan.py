@@ -39,9 +39,10 @@ PYTEST_NOETIC = "pytest>=6.2"  # focal's python3-pytest 4.6.9 fails pytest.appro
 PILLOW_NOETIC = "Pillow>=7.1"  # focal's 7.0 has no ImageGrab.grab(xdisplay=): the screenshot tests
 # Gazebo's assets: meshes (Collada through pycollada, STL, OBJ) and ROS 1's xacro (PyPI's 1.13.x;
 # its 2.x releases are ROS 2's). On Python 3.8: trimesh 4.x, and pycollada 0.8 (0.9 needs 3.9;
-# 0.8 is a source package, pure Python).
-MESH_PIP = ("trimesh>=4,<6", "pycollada>=0.8")
-MESH_PIP_PY38 = ("trimesh>=4,<5", "pycollada>=0.8,<0.9")
+# 0.8 is a source package, pure Python). trimesh reads an ASCII STL that is not UTF-8 only with
+# charset-normalizer (3.x still supports 3.8).
+MESH_PIP = ("trimesh>=4,<6", "pycollada>=0.8", "charset-normalizer>=3,<4")
+MESH_PIP_PY38 = ("trimesh>=4,<5", "pycollada>=0.8,<0.9", "charset-normalizer>=3,<4")
 XACRO = "xacro==1.13.3"
 CATKIN_LINT = "catkin-lint==1.6.25"  # make test checks the packages' CMakeLists.txt and package.xml
 WHEEL_MACHINES = ("x86_64", "amd64")

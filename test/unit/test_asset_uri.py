@@ -110,3 +110,20 @@ def test_model_config_picks_the_newest_sdf_gazebo_reads(tmp_path):
     (folder / "model.config").unlink()
     with pytest.raises(AssetError, match="has no model.config"):
         model_sdf_file(str(folder), parse_xml)
+
+
+@pytest.mark.parametrize("version", ["-1", "1.x", "", "0", "0.0", "1.-6", "v1.6", "1.6.0.1"])
+def test_a_version_that_is_no_version_is_never_taken(tmp_path, version):
+    """Gazebo reads these as 0.0.0, which it never takes over a real one; alone they leave
+    model.config naming no SDF file Gazebo 11 reads."""
+    folder = make_model(tmp_path, "m", ((version, "odd.sdf"),))
+    with pytest.raises(AssetError, match="model.config:1: model.config names no"):
+        model_sdf_file(str(folder), parse_xml)
+    folder = make_model(tmp_path / "two", "m", (("1.5", "model.sdf"), (version, "odd.sdf")))
+    assert model_sdf_file(str(folder), parse_xml) == str(folder / "model.sdf")
+
+
+def test_versions_are_compared_as_numbers(tmp_path):
+    folder = make_model(tmp_path, "m", (("1.6.1", "patch.sdf"), ("1.6", "model.sdf"),
+                                        ("1.10", "future.sdf")))
+    assert model_sdf_file(str(folder), parse_xml) == str(folder / "patch.sdf")

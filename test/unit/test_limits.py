@@ -232,3 +232,61 @@ def test_urdf_joint_limits_are_checked(attributes, field):
     fine = text.replace("<limit %s/>" % attributes,
                         '<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>')
     assert read_urdf_text(fine, "model_xml").joints["j"].type == "revolute"
+
+
+# --- names (issue 28: a 10 MB model_name was taken, and said again in every model_states) ------
+
+LONG = "m" * 10_000_000
+NAMED = [
+    ("spawn model_name", lambda wc: wc.spawn(LONG, sdf_box(), at(1, 1, 0.1)),
+     "SpawnModel: Failure - model_name is 10000000 characters, more than the 256 allowed"),
+    ("spawn robot_namespace", lambda wc: wc.spawn("r", urdf(), at(1, 1, 1), kind="urdf",
+                                                  robot_namespace="n" * 300),
+     "SpawnModel: Failure - robot_namespace is 300 characters"),
+    ("spawn reference_frame", lambda wc: wc.spawn("r", sdf_box(), at(1, 1, 0.1), LONG),
+     "SpawnModel: Failure - reference_frame is 10000000 characters"),
+    ("get_model_state", lambda wc: wc.get_model_state(LONG),
+     "GetModelState: model_name is 10000000 characters"),
+    ("get_model_state relative", lambda wc: wc.get_model_state(ROBOT, LONG),
+     "GetModelState: relative_entity_name is 10000000 characters"),
+    ("set_model_state frame", lambda wc: wc.set_model_state(ROBOT, at(0, 0), REST, LONG),
+     "SetModelState: reference_frame is 10000000 characters"),
+    ("get_link_state", lambda wc: wc.get_link_state(LONG), "GetLinkState: link_name is"),
+    ("delete_model", lambda wc: wc.delete(LONG), "DeleteModel: model_name is"),
+    ("get_model_properties", lambda wc: wc.model_properties(LONG),
+     "GetModelProperties: model_name is"),
+    ("wrench", lambda wc: wc.apply_body_wrench("box::link", LONG, (0, 0, 0), (1, 0, 0),
+                                               (0, 0, 0)), "ApplyBodyWrench: reference_frame"),
+    ("joint effort", lambda wc: wc.apply_joint_effort(LONG, 1.0), "ApplyJointEffort: joint_name"),
+    ("joint properties", lambda wc: wc.get_joint_properties(LONG),
+     "GetJointProperties: joint_name"),
+    ("link properties", lambda wc: wc.get_link_properties(LONG), "GetLinkProperties: link_name"),
+    ("model configuration", lambda wc: wc.set_model_configuration(ROBOT, ["j", LONG], [0, 0]),
+     "SetModelConfiguration: joint_names[1] is 10000000 characters"),
+    ("light", lambda wc: wc.get_light(LONG), "getLightProperties: light_name is"),
+    ("SDF link name", lambda wc: wc.spawn("r", sdf_box().replace("name='link'",
+                                                                 "name='%s'" % ("l" * 300)),
+                                          at(1, 1, 0.1)), "<link> name is 300 characters"),
+    ("URDF link name", lambda wc: wc.spawn("r", urdf().replace('name="l"', 'name="%s"'
+                                                               % ("l" * 300)),
+                                           at(1, 1, 1), kind="urdf"),
+     "<link>: name is 300 characters, more than the 256 allowed"),
+]
+
+
+@pytest.mark.parametrize("label, send, words", NAMED, ids=[n[0] for n in NAMED])
+def test_a_name_longer_than_its_limit_is_refused_in_one_line(world, label, send, words):
+    sim, wc = world
+    with pytest.raises(RequestError) as err:
+        send(wc)
+    message = str(err.value)
+    assert words in message and "\n" not in message and len(message) < 1000, message[:1000]
+    assert "r" not in sim.models and LONG not in sim.models
+
+
+def test_a_name_of_the_limit_is_taken(world):
+    sim, wc = world
+    name = "n" * limits.MAX_NAME
+    wc.spawn(name, sdf_box(), at(1, -1, 0.1))
+    assert wc.model_properties(name).body_names == ["link"]
+    wc.delete(name)

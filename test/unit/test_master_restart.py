@@ -115,6 +115,7 @@ def ros(tmp_path):
     env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d/" % port,
                ROS_LOG_DIR=str(tmp_path), ROS_HOME=str(tmp_path), ROS_IP="127.0.0.1")
     env.pop("ROS_HOSTNAME", None)
+    env.pop("PYTHONUNBUFFERED", None)   # as on a user's machine: the sim's lines come when said
     running = []
     yield port, env, running
     for process in reversed(running):

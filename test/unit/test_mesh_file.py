@@ -18,6 +18,8 @@ from tutorial_turtlebot.sim import mesh_file
 from tutorial_turtlebot.sim.mesh_file import (Mesh, MeshError, MeshPart, cache_clear,
                                               convex_hull_vertices, load_mesh, write_obj_parts)
 
+from unit_helpers import within
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 MODELS = os.path.join(HERE, os.pardir, "fixtures", "gazebo_models")
 HEXAGON = os.path.join(MODELS, "turtlebot3_world", "meshes", "hexagon.dae")
@@ -343,7 +345,7 @@ def one_line_error(path, *words):
 
 def test_errors_are_one_line(tmp_path):
     one_line_error(tmp_path / "missing.dae", "no such")
-    one_line_error(tmp_path, "not a file")
+    one_line_error(tmp_path, "it is a directory, not a regular file (a mesh file is needed)")
     (tmp_path / "mesh.ply").write_text("ply\n")
     one_line_error(tmp_path / "mesh.ply", ".ply", ".dae", ".stl", ".obj")
     (tmp_path / "broken.dae").write_text("<COLLADA><asset>\n<unit meter=")
@@ -363,6 +365,102 @@ def test_errors_are_one_line(tmp_path):
     one_line_error(write_dae(tmp_path, "lines.dae", primitives=lines), "no triangles")
     one_line_error(write_dae(tmp_path, "flat.dae", positions=((0, 0, 0), (0, 0, 0), (1, 1, 1))),
                    "no triangles")
+
+
+# --- under abuse (issue 28) ----------------------------------------------------------------------
+
+def triangles_stl(name=b"binary stl"):
+    """A binary STL of two triangles (a unit square), exactly as long as its count says."""
+    data = name.ljust(80, b" ") + struct.pack("<I", 2)
+    for a, b, c in (((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((1, 0, 0), (1, 1, 0), (0, 1, 0))):
+        data += struct.pack("<12fH", 0, 0, 1, *a, *b, *c, 0)
+    return data
+
+
+def test_a_binary_stl_with_a_byte_after_its_triangles_is_read_as_gazebo_reads_it(tmp_path):
+    path = tmp_path / "trailing.stl"
+    path.write_bytes(triangles_stl() + b"\0")
+    mesh = load_mesh(str(path))
+    assert len(mesh.faces) == 2 and np.allclose(mesh.bounds[1], (1.0, 1.0, 0.0))
+
+
+def test_an_ascii_stl_named_in_latin_1_is_read(tmp_path):
+    """trimesh guesses the text's encoding with charset-normalizer (tools/setup_plan.py)."""
+    path = tmp_path / "latin1.stl"
+    path.write_bytes("solid caf\xe9\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
+                     "   vertex 2 0 0\n   vertex 0 3 0\n  endloop\n endfacet\nendsolid caf\xe9\n"
+                     .encode("latin-1"))
+    mesh = load_mesh(str(path))
+    assert len(mesh.faces) == 1 and np.allclose(mesh.bounds[1], (2.0, 3.0, 0.0))
+
+
+def obj_with(tmp_path, mtl_lines=None, vertices=("0 0 0", "1 0 0", "0 1 0")):
+    """An OBJ of one triangle using material ``m`` of m.mtl (``mtl_lines``; None: no file)."""
+    path = tmp_path / "thing.obj"
+    path.write_text("mtllib m.mtl\n%s\nusemtl m\nf 1 2 3\n"
+                    % "\n".join("v " + v for v in vertices))
+    if mtl_lines is not None:
+        (tmp_path / "m.mtl").write_text("newmtl m\n" + "\n".join(mtl_lines) + "\n")
+    return str(path)
+
+
+def test_an_obj_whose_mtllib_is_a_fifo_is_refused_without_waiting(tmp_path):
+    path = obj_with(tmp_path)
+    os.mkfifo(str(tmp_path / "m.mtl"))
+    with pytest.raises(MeshError) as err:
+        within(10, load_mesh, path)
+    assert str(err.value) == ("%s: cannot read a file the mesh names: it is a FIFO, not a "
+                              "regular file" % (tmp_path / "m.mtl"))
+
+
+def test_an_obj_whose_texture_is_a_device_is_refused(tmp_path):
+    path = obj_with(tmp_path, ["Kd 1 0 0", "map_Kd skin.png"])
+    (tmp_path / "skin.png").symlink_to("/dev/zero")
+    with pytest.raises(MeshError) as err:
+        within(10, load_mesh, path)
+    assert "skin.png: cannot read a file the mesh names: it is a character device" in str(err.value)
+
+
+def test_an_obj_with_its_mtl_is_coloured_and_without_it_is_not(tmp_path):
+    assert [p.rgba for p in load_mesh(obj_with(tmp_path, ["Kd 1 0 0"])).parts] == [RED]
+    cache_clear()
+    os.unlink(str(tmp_path / "m.mtl"))          # a missing mtl is left out, as in Gazebo
+    assert [p.rgba for p in load_mesh(obj_with(tmp_path)).parts] == [None]
+
+
+def test_a_mesh_larger_than_its_bound_is_refused_unread(tmp_path, monkeypatch):
+    monkeypatch.setattr(mesh_file, "MAX_MESH_FILE_BYTES", 100)
+    path = tmp_path / "big.stl"
+    path.write_bytes(triangles_stl())
+    message = one_line_error(path)
+    assert message.endswith("cannot read this STL file: it is %d bytes, more than the 100 "
+                            "allowed" % len(triangles_stl()))
+
+
+def test_a_zipped_collada_file_is_refused(tmp_path):
+    import zipfile
+    with zipfile.ZipFile(str(tmp_path / "zipped.dae"), "w") as archive:
+        archive.write(HEXAGON, "inner.dae")
+    one_line_error(tmp_path / "zipped.dae", "zip archive")
+
+
+@pytest.mark.parametrize("coordinate, scale, words", [
+    ("1e308", (10.0, 10.0, 10.0), "vertex coordinate inf is outside [-1e+06, 1e+06] m (the "
+                                  "file's 1e+308 scaled by 10)"),
+    ("-1e12", (1.0, 1.0, 1.0), "vertex coordinate -1e+12 is outside [-1e+06, 1e+06] m"),
+    ("1e5", (-100.0, 1.0, 1.0), "vertex coordinate -1e+07 is outside"),
+])
+def test_vertices_beyond_the_world_after_scaling_are_refused(tmp_path, coordinate, scale, words):
+    path = obj_with(tmp_path, vertices=("0 0 0", "%s 0 0" % coordinate, "0 1 0"))
+    with pytest.raises(MeshError) as err:
+        load_mesh(path, scale)
+    assert str(err.value).startswith(path + ": ") and words in str(err.value)
+    assert "\n" not in str(err.value)
+
+
+def test_an_unused_vertex_beyond_the_world_is_no_matter(tmp_path):
+    path = obj_with(tmp_path, vertices=("0 0 0", "1 0 0", "0 1 0", "1e308 0 0"))
+    assert np.allclose(load_mesh(path, (10.0, 10.0, 10.0)).bounds[1], (10.0, 10.0, 0.0))
 
 
 # --- hull and Wavefront files for pybullet -------------------------------------------------------

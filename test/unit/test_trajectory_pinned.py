@@ -9,9 +9,11 @@ Two checks, because a pybullet built by another compiler is not bit-identical:
   ticks or the ray casting changes it. A build with no pin skips this check and says which
   digest to pin.
 - **within a tolerance, on every build**: the poses every 0.1 s, every 10th ray of every scan
-  and every 10th odometry reading, against the reference in data/trajectory_reference.json, to
-  within 1 um (poses, odometry) and 10 um (ranges). The builds differ by less than 1e-9 m; a
-  command changed by 1 mm/s moves the robot by about 1 mm.
+  and every 10th odometry reading, against the reference in data/trajectory_reference.json:
+  poses and odometry to within 1 um; ranges to within 10 um but for at most 1 % of the rays,
+  which may differ by up to 1 cm. The builds' poses differ by less than 1e-9 m, and so do most
+  ranges, but a ray that grazes an edge can land elsewhere (1.2 mm, once, between PyPI's wheel
+  and Debian 13's build). A command changed by 1 mm/s moves the robot by about 1 mm.
 
 If a change to the physics is meant, take the new digest and reference from the failure
 message (``python3 test/unit/test_trajectory_pinned.py --write`` rewrites the reference) and
@@ -51,6 +53,8 @@ PINNED = {
 REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data",
                          "trajectory_reference.json")
 TOLERANCE = {"poses": 1e-6, "odom": 1e-6, "ranges": 1e-5}
+GRAZING_RAYS = 0.01    # the share of ranges that may be off by more, up to GRAZING_LIMIT
+GRAZING_LIMIT = 0.01   # m
 
 
 def pybullet_build():
@@ -132,8 +136,12 @@ def differences(samples, reference):
         if not numpy.array_equal(numpy.isfinite(ours), numpy.isfinite(theirs)):
             over[kind] = (float("inf"), tolerance)
             continue
-        worst = float(numpy.max(numpy.abs(ours[both] - theirs[both]), initial=0.0))
-        if worst > tolerance:
+        off = numpy.abs(ours[both] - theirs[both])
+        worst = float(numpy.max(off, initial=0.0))
+        if kind == "ranges" and numpy.count_nonzero(off > tolerance) <= GRAZING_RAYS * off.size:
+            if worst > GRAZING_LIMIT:
+                over[kind] = (worst, GRAZING_LIMIT)
+        elif worst > tolerance:
             over[kind] = (worst, tolerance)
     return over
 
@@ -181,6 +189,19 @@ def test_a_change_of_one_command_fails_both_checks(driven):
         COMMANDS[2] = original
     assert digest != driven[0]
     assert "poses" in differences(samples, load_reference())
+
+
+def test_the_ranges_tolerance_sees_a_shifted_laser_and_lets_one_grazing_ray_pass():
+    reference = load_reference()
+    shifted = dict(reference, ranges=[[r + 0.002 for r in scan] for scan in reference["ranges"]])
+    assert "ranges" in differences(shifted, reference)
+    grazing = [list(scan) for scan in reference["ranges"]]
+    row, column = next((i, j) for i, scan in enumerate(grazing)
+                       for j, r in enumerate(scan) if r < 3.0)
+    grazing[row][column] += 0.0012
+    assert differences(dict(reference, ranges=grazing), reference) == {}
+    grazing[row][column] += 0.05
+    assert "ranges" in differences(dict(reference, ranges=grazing), reference)
 
 
 if __name__ == "__main__":

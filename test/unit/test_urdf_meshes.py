@@ -131,7 +131,8 @@ def test_a_relative_mesh_of_a_urdf_given_as_text_is_taken_from_the_working_direc
     (PKG + "bases/burger_base.stl", "0 0.001 0.001", "scale='0 0.001 0.001' is not three"),
     (PKG + "bases/burger_base.stl", "a b c", "scale='a b c' is not three"),
     ("package://turtlebot3_description/package.xml", "1 1 1", "unknown mesh format '.xml'"),
-    (PKG + "bases", "1 1 1", "bases: not a file (a mesh file is needed)"),
+    (PKG + "bases", "1 1 1", "bases: it is a directory, not a regular file (a mesh file is "
+                             "needed)"),
 ])
 def test_each_mesh_error_is_one_line_naming_file_line_and_link(tmp_path, visual, scale, words):
     path = write(tmp_path, "bad.urdf", one_link(visual, PKG + "bases/burger_base.stl", scale))

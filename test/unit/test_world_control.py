@@ -145,6 +145,29 @@ def test_joint_properties(empty):
         wc.get_joint_properties("nobody::wheel_left_joint")
 
 
+HINGED_SDF = ("<sdf version='1.6'><model name='x'><link name='frame'><collision name='c'>"
+              "<geometry><box><size>0.4 0.4 0.1</size></box></geometry></collision></link>"
+              "<link name='door'><pose>0 0 0.3 0 0 0</pose><collision name='c'><geometry><box>"
+              "<size>0.4 0.05 0.4</size></box></geometry></collision></link>"
+              "<joint name='hinge' type='revolute'><parent>frame</parent><child>door</child>"
+              "<axis><xyz>0 0 1</xyz></axis></joint>"
+              "<joint name='weld' type='fixed'><parent>frame</parent><child>door</child></joint>"
+              "</model></sdf>")
+
+
+def test_an_sdf_joint_that_get_model_properties_lists_has_properties(empty):
+    """An SDF model's joints are listed but not simulated: still, at their <joint type>."""
+    _, wc = empty
+    wc.spawn("cabinet", HINGED_SDF, at(2, 2, 0.05))
+    assert wc.model_properties("cabinet").joint_names == ["hinge", "weld"]
+    for name, kind in (("hinge", "revolute"), ("cabinet::hinge", "revolute"),
+                       ("cabinet::weld", "fixed")):
+        j = wc.get_joint_properties(name)
+        assert (j.kind, j.damping, j.position, j.rate) == (kind, [0.0], [0.0], [0.0])
+    with pytest.raises(RequestError, match="^GetJointProperties: joint not found$"):
+        wc.get_joint_properties("cabinet::elbow")
+
+
 def test_set_model_configuration(empty):
     sim, wc = empty
     run(sim, 0.51)         # standing still a while (off the 30 Hz control ticks)

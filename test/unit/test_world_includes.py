@@ -1,10 +1,14 @@
 """<include> of model folders, as Gazebo resolves them (world_sdf with asset_uri): no pybullet."""
 import math
+import os
+import stat
 
 import pytest
 
 from tutorial_turtlebot.errors import WorldError
 from tutorial_turtlebot.sim.world_sdf import MAX_INCLUDE_DEPTH, load_world
+
+from unit_helpers import within
 
 BOX = ('<link name="l"><pose>0 0 0.5 0 0 0</pose><collision name="c"><geometry><box>'
        '<size>1 1 1</size></box></geometry></collision></link>')
@@ -110,3 +114,38 @@ def test_errors_inside_an_included_model_name_its_file(tmp_path, models):
                                 '</size></box></geometry></collision></link>')
     message = fault(world_file(tmp_path, '<include><uri>model://bad</uri></include>'))
     assert "bad/model.sdf:6: <size>: must be 3 numbers" in message
+
+
+# --- under abuse (issue 28): only regular files are read -----------------------------------------
+
+@pytest.mark.parametrize("target", ["/dev/stdin", "/dev/zero", "fifo"])
+def test_an_include_of_what_is_no_regular_file_is_refused_at_its_line(tmp_path, target):
+    if target == "fifo":
+        target = str(tmp_path / "pipe.sdf")
+        os.mkfifo(target)
+    elif not os.path.exists(target) or stat.S_ISREG(os.stat(target).st_mode):
+        pytest.skip("no %s here, or a regular file" % target)
+    path = world_file(tmp_path, "<include>\n<uri>%s</uri>\n</include>" % target)
+    message = within(10, fault, path)
+    assert message.startswith("%s:4: <include> of %s: " % (path, target)), message
+    assert message.endswith("not a regular file")
+
+
+def test_a_model_config_linked_to_dev_zero_is_refused(tmp_path, models):
+    folder = model_folder(models, "crate", BOX)
+    os.unlink(str(folder / "model.config"))
+    (folder / "model.config").symlink_to("/dev/zero")
+    path = world_file(tmp_path, "<include><uri>model://crate</uri></include>")
+    message = within(10, fault, path)
+    assert message.endswith("model.config: cannot read model.config: it is a character "
+                            "device, not a regular file"), message
+
+
+def test_a_model_sdf_that_is_a_fifo_is_refused(tmp_path, models):
+    folder = model_folder(models, "crate", BOX)
+    os.unlink(str(folder / "model.sdf"))
+    os.mkfifo(str(folder / "model.sdf"))
+    message = within(10, fault, world_file(tmp_path, "<include><uri>model://crate</uri>"
+                                                     "</include>"))
+    assert message.endswith("its model.config names model.sdf: it is a FIFO, not a regular "
+                            "file"), message

@@ -13,6 +13,9 @@ from tutorial_turtlebot.errors import WorldError
 from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.spawn_check import check_spawn, find_obstacle
 from tutorial_turtlebot.sim.world_bullet import WORLD_COLLISION_GROUP, build_world
+from tutorial_turtlebot.sim.world_control import RequestError
+
+from unit_helpers import ROBOT
 from tutorial_turtlebot.sim.world_sdf import DEFAULT_RGBA, load_world
 
 FIXTURES = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "fixtures")
@@ -144,6 +147,30 @@ def test_a_broken_mesh_is_one_line_naming_the_file_and_the_line(tmp_path):
         load_world(path)
     message = str(err.value)
     assert "\n" not in message and "test.world:6:" in message and "bad.stl" in message
+
+
+@pytest.mark.parametrize("static, coordinate, scale, words", [
+    ("true", "1e308", "10 10 10", "vertex coordinate inf is outside [-1e+06, 1e+06] m (the "
+                                  "file's 1e+308 scaled by 10)"),
+    ("false", "1e12", "1 1 1", "vertex coordinate 1e+12 is outside [-1e+06, 1e+06] m"),
+    ("false", "1e308", "1 1 1", "vertex coordinate 1e+308 is outside"),
+])
+def test_a_spawned_mesh_beyond_the_world_is_refused(tmp_path, empty, monkeypatch, static,
+                                                    coordinate, scale, words):
+    """Issue 28: these were taken, the static one blinding the laser (0 hits of 360), the
+    movable ones falling through the floor."""
+    sim, wc = empty
+    (tmp_path / "far.obj").write_text("v 0 0 0\nv %s 0 0\nv 0 1 0\nv 0 0 1\n"
+                                      "f 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n" % coordinate)
+    monkeypatch.chdir(tmp_path)
+    sdf = ("<sdf version='1.6'><model name='x'><static>%s</static><link name='l'>"
+           "<collision name='c'><geometry><mesh><uri>far.obj</uri><scale>%s</scale></mesh>"
+           "</geometry></collision></link></model></sdf>" % (static, scale))
+    with pytest.raises(RequestError) as err:
+        wc.spawn("far", sdf, ((1.0, 1.0, 0.5), (0, 0, 0, 1)))
+    assert words in str(err.value) and "far.obj" in str(err.value)
+    assert "\n" not in str(err.value) and "far" not in sim.models
+    assert sim.models.names() == ["ground_plane", ROBOT]
 
 
 def test_the_camera_draws_the_meshes_as_the_primitive_copy_looks():

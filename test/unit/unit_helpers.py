@@ -104,3 +104,25 @@ def make_scan(convention, world, range_min=0.12, range_max=3.5):
         b = (angle_min + i * inc + math.pi) % (2 * math.pi) - math.pi
         ranges.append(f32(world(b)))
     return Scan(ranges, angle_min, inc, f32(range_min), f32(range_max))
+
+
+def within(seconds, call, *args):
+    """``call(*args)``'s result (or exception, raised here), in a daemon thread; AssertionError
+    if it is not done within ``seconds`` (a read that would wait for ever fails the test, not
+    the run)."""
+    import threading
+
+    out = {}
+
+    def run():
+        try:
+            out["result"] = call(*args)
+        except BaseException as err:   # noqa: BLE001 - handed to the caller
+            out["error"] = err
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    thread.join(seconds)
+    assert not thread.is_alive(), "%s did not end within %s s" % (call.__name__, seconds)
+    if "error" in out:
+        raise out["error"]
+    return out["result"]

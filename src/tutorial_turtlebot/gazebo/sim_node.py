@@ -454,6 +454,9 @@ def main() -> None:
     # publish, holding its locks) and could hang there; here the signal only asks the loop to
     # stop, and the loop shuts ROS down when it is between steps.
     sys.setswitchinterval(GIL_SWITCH_INTERVAL)
+    # rospy writes its log lines to stdout and never flushes: into roslaunch's log file or a
+    # pipe they would come kilobytes late (unless PYTHONUNBUFFERED is set).
+    sys.stdout.reconfigure(line_buffering=True)
     rospy.init_node("gazebo", disable_signals=True)
     # Before the first topic and service: a client that stalls in its handshake (or is not a
     # ROS client at all) must not keep the others out.

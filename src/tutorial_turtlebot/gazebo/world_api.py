@@ -59,8 +59,11 @@ from ..sim.world_control import RequestError, WorldControl
 ANSWER_TIMEOUT = 10.0    # wall s a service waits for the loop before it gives up
 METRICS_PERIOD = 1.0     # wall s between two ~performance_metrics
 JOINT_TYPES = {"revolute": GetJointPropertiesResponse.REVOLUTE,
+               "continuous": GetJointPropertiesResponse.CONTINUOUS,
                "prismatic": GetJointPropertiesResponse.PRISMATIC,
-               "ball": GetJointPropertiesResponse.BALL}
+               "fixed": GetJointPropertiesResponse.FIXED,
+               "ball": GetJointPropertiesResponse.BALL,
+               "universal": GetJointPropertiesResponse.UNIVERSAL}
 
 
 def pose_in(msg):

@@ -62,6 +62,9 @@ def init_node(name: str, **kwargs) -> None:
         sys.stderr.write("%s: namespace %r is not a legal ROS name: use letters, digits, _ and /, "
                          "starting with a letter (e.g. tb3_1)\n" % (name, namespace))
         sys.exit(2)
+    # rospy writes its log lines to stdout and never flushes: into roslaunch's log file or a
+    # pipe they would come kilobytes late (unless PYTHONUNBUFFERED is set).
+    sys.stdout.reconfigure(line_buffering=True)
     rospy.init_node(name, **kwargs)
 
 

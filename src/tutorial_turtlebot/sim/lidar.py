@@ -1,6 +1,6 @@
 """The LDS-01 laser: ray geometry and how distances become ``LaserScan.ranges``.
 
-Two kinds (doc/turtlebot3.md 2.2, 7): ``gazebo`` is what gazebo_ros_laser sends (0 to 6.28319 rad
+Two kinds (doc/turtlebot3.md 2.2, 6): ``gazebo`` is what gazebo_ros_laser sends (0 to 6.28319 rad
 in 360 samples, so the last ray repeats the first; +inf past range_max, -inf at or under
 range_min, gaussian noise then clamped into [range_min, range_max]); ``lds01`` is what the real
 hls_lfcd_lds_driver publishes (exact 1 degree steps, 0.0 for no return or too close).

@@ -14,14 +14,25 @@ triangles per material colour.
 - STL (binary or ASCII, read by trimesh): metres as written, no colour.
 - OBJ (read by trimesh): each ``usemtl`` material's colour is its ``.mtl`` ``Kd`` (alpha from
   ``d``), also where it has a texture; faces without material have None.
+- STL: a binary file with bytes after its last triangle is read as Gazebo reads it (they are
+  left out); an ASCII file that is not UTF-8 is read as trimesh guesses its text
+  (charset-normalizer).
 Points shared by several triangles become one vertex. Then every vertex is multiplied by
-``scale`` (per axis; a mirroring scale keeps the faces counter-clockwise seen from outside).
+``scale`` (per axis; a mirroring scale keeps the faces counter-clockwise seen from outside), and
+every vertex a triangle uses must then lie within +-limits.MAX_POSITION m of the mesh frame.
+
+Files are read through file_read: the mesh and every file it names (an OBJ's ``mtllib`` and
+textures, a Collada's images, looked for beside it) only if they are regular files, the mesh
+of at most file_read.MAX_MESH_FILE_BYTES, the others MAX_MESH_SIDE_FILE_BYTES. A Collada file
+that is a zip archive (.zae) is refused, as Gazebo refuses it.
 
 trimesh and pycollada are imported on first use, so worlds without meshes do not pay for them.
 A file is read once per process for the same (real path, mtime, size), whatever the scale.
 """
+import io
 import math
 import os
+import struct
 import tempfile
 import warnings
 from dataclasses import dataclass
@@ -30,6 +41,8 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import UserError
+from . import limits
+from .file_read import MAX_MESH_FILE_BYTES, MAX_MESH_SIDE_FILE_BYTES, not_regular, read_file
 
 Rgba = Tuple[float, float, float, float]
 _FORMATS = {".dae": "Collada", ".stl": "STL", ".obj": "Wavefront OBJ"}
@@ -84,8 +97,9 @@ def load_mesh(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> Mesh:
                         % (path, scale))
     if not os.path.exists(path):
         raise MeshError("%s: no such mesh file" % path)
-    if not os.path.isfile(path):
-        raise MeshError("%s: not a file (a mesh file is needed)" % path)
+    why = not_regular(path)
+    if why is not None:
+        raise MeshError("%s: %s (a mesh file is needed)" % (path, why))
     suffix = os.path.splitext(path)[1].lower()
     if suffix not in SUFFIXES:
         raise MeshError("%s: unknown mesh format %r; the formats read are %s"
@@ -107,17 +121,21 @@ def cache_clear() -> None:
 
 def _read(path: str, suffix: str) -> Mesh:
     """The file's mesh, unscaled, checked: finite vertices, triangles with indices in range."""
+    data = read_file(path, MAX_MESH_FILE_BYTES, "this %s file" % _FORMATS[suffix], MeshError)
+    side_files = _SideFiles(path)
     try:
         with warnings.catch_warnings():   # pycollada's numpy.matrix, trimesh's notes
             warnings.simplefilter("ignore")
             if suffix == ".dae":
-                vertices, parts = _read_collada(path)
+                vertices, parts = _read_collada(data, side_files)
             else:
-                vertices, parts = _read_trimesh(path, suffix[1:])
+                vertices, parts = _read_trimesh(data, suffix[1:], side_files)
     except Exception as err:   # trimesh, pycollada, lxml, numpy: any failure is a bad file
         text = " ".join(str(err).split()) or type(err).__name__
         raise MeshError("%s: cannot read this %s file: %s"
                         % (path, _FORMATS[suffix], text[:200])) from None
+    if side_files.refused is not None:
+        raise MeshError(side_files.refused)
     parts = [(np.asarray(f, dtype=np.int64).reshape(-1, 3), rgba) for f, rgba in parts]
     parts = [(f, rgba) for f, rgba in parts if len(f)]
     if not parts:
@@ -149,8 +167,18 @@ def _merge_colours(parts):
 
 def _scaled(mesh: Mesh, factors: Tuple[float, float, float]) -> Mesh:
     """``mesh`` scaled per axis, its arrays read-only; a mirror (odd number of negative factors)
-    reverses every triangle so that faces stay counter-clockwise seen from outside."""
-    vertices = mesh.vertices * np.array(factors)
+    reverses every triangle so that faces stay counter-clockwise seen from outside. MeshError
+    if a vertex a triangle uses lands beyond +-limits.MAX_POSITION (or overflows)."""
+    with np.errstate(over="ignore"):
+        vertices = mesh.vertices * np.array(factors)
+    used = vertices[np.unique(mesh.faces)].ravel()
+    worst = int(np.argmax(np.abs(used)))
+    problem = limits.outside("vertex coordinate", used[worst], -limits.MAX_POSITION,
+                             limits.MAX_POSITION, "m")
+    if problem:
+        original = mesh.vertices[np.unique(mesh.faces)].ravel()[worst]
+        raise MeshError("%s: %s (the file's %g scaled by %g)"
+                        % (mesh.path, problem, original, factors[worst % 3]))
     vertices.setflags(write=False)
     mirror = (factors[0] < 0) ^ (factors[1] < 0) ^ (factors[2] < 0)
     parts = []
@@ -161,12 +189,60 @@ def _scaled(mesh: Mesh, factors: Tuple[float, float, float]) -> Mesh:
     return Mesh(mesh.path, vertices, tuple(parts))
 
 
-def _read_collada(path: str):
+class _SideFiles:
+    """The files a mesh names (an OBJ's mtllib and textures, a Collada's images), read beside
+    it (the name as written, else its last part, as trimesh looks) through file_read. One
+    that is missing is left out (a mesh without its colours, as in Gazebo); the first one
+    refused is kept in ``refused`` (trimesh swallows what a resolver raises)."""
+
+    def __init__(self, mesh_path: str):
+        self.folder = os.path.dirname(mesh_path)
+        self.refused: Optional[str] = None
+
+    def read(self, name: str) -> bytes:
+        for candidate in (name.strip(), os.path.basename(name.strip())):
+            path = os.path.normpath(os.path.join(self.folder, candidate))
+            if candidate and os.path.lexists(path):
+                try:
+                    return read_file(path, MAX_MESH_SIDE_FILE_BYTES, "a file the mesh names",
+                                     MeshError)
+                except MeshError as err:
+                    self.refused = self.refused or str(err)
+                    raise
+        raise FileNotFoundError(name)
+
+    def trimesh_resolver(self):
+        """A trimesh Resolver reading through ``read``."""
+        from trimesh.resolvers import Resolver
+        side_files = self
+
+        class _Resolver(Resolver):
+            def __init__(self):
+                pass
+
+            def get(self, key):
+                return side_files.read(key)
+
+            def write(self, name, data):
+                raise OSError("meshes are only read here")
+
+            def namespaced(self, namespace):
+                return self
+
+            def keys(self):
+                return iter(())
+        return _Resolver()
+
+
+def _read_collada(data: bytes, side_files: _SideFiles):
     """(vertices, [(faces, rgba)]) of a Collada file: unit and node transforms applied, not the
     up axis."""
     import collada
-    doc = collada.Collada(path, ignore=[collada.common.DaeUnsupportedError,
-                                        collada.common.DaeBrokenRefError])
+    if data[:4] == b"PK\x03\x04":
+        raise ValueError("it is a zip archive (a .zae); Gazebo reads .dae files of plain XML")
+    doc = collada.Collada(io.BytesIO(data), aux_file_loader=side_files.read,
+                          ignore=[collada.common.DaeUnsupportedError,
+                                  collada.common.DaeBrokenRefError])
     if doc.scene is not None:
         geometries = list(doc.scene.objects("geometry"))
     else:   # no visual scene: every geometry as written
@@ -196,10 +272,13 @@ def _collada_colour(material) -> Optional[Rgba]:
     return tuple(float(v) for v in diffuse) + ((1.0,) if len(diffuse) == 3 else ())
 
 
-def _read_trimesh(path: str, file_type: str):
+def _read_trimesh(data: bytes, file_type: str, side_files: _SideFiles):
     """(vertices, [(faces, rgba)]) of an STL or OBJ file read by trimesh, as written."""
     import trimesh
-    scene = trimesh.load(path, file_type=file_type, force="scene", process=False)
+    if file_type == "stl":
+        data = _binary_stl_as_gazebo_reads_it(data)
+    scene = trimesh.load(io.BytesIO(data), file_type=file_type, force="scene", process=False,
+                         resolver=side_files.trimesh_resolver())
     chunks, parts, count = [], [], 0
     for node in scene.graph.nodes_geometry:
         transform, name = scene.graph[node]
@@ -212,6 +291,17 @@ def _read_trimesh(path: str, file_type: str):
         parts.append((np.asarray(geometry.faces) + count, rgba))
         count += len(vertices)
     return (np.concatenate(chunks) if chunks else np.zeros((0, 3))), parts
+
+
+def _binary_stl_as_gazebo_reads_it(data: bytes) -> bytes:
+    """A binary STL (80 bytes of header, the triangle count, 50 bytes a triangle) without the
+    bytes after its last triangle, which Gazebo leaves unread and trimesh would take for the
+    sign of an ASCII file. Anything else as it is: an ASCII file's count would be the text's
+    bytes, so at least 0x09090909 triangles, far more than any file of it holds."""
+    if len(data) < 84:
+        return data
+    end = 84 + 50 * struct.unpack("<I", data[80:84])[0]
+    return data[:end] if end < len(data) else data
 
 
 def _obj_colour(geometry) -> Optional[Rgba]:

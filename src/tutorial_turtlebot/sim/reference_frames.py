@@ -4,7 +4,7 @@ A pose is ((x, y, z), (qx, qy, qz, qw)); a twist is ((vx, vy, vz), (wx, wy, wz))
 and angular in rad/s, both in the world frame unless said otherwise. A reference frame is the
 pose and twist of another model or link; "", "world", "map" and "/map" name the world itself.
 
-The rules (doc/turtlebot3.md 8.2), which are Gazebo's, not textbook kinematics:
+The rules (doc/turtlebot3.md 7.2), which are Gazebo's, not textbook kinematics:
 - get_model_state / get_link_state relative to a frame F: pose = F^-1 * pose;
   velocities = R_F^-1 (v - v_F), with no omega x r term.
 - set_model_state relative to F: pose = F * pose; the twist is rotated into the world

@@ -231,12 +231,13 @@ def read_urdf_element(root: Element, source: str,
     return _Reader(source, base_dir or os.getcwd()).read(root)
 
 
-def mesh_path(uri: str, base_dir: str) -> str:
+def mesh_path(uri: str, base_dir: str, scale=(1.0, 1.0, 1.0)) -> str:
     """The absolute path of the mesh file a URDF ``<mesh filename>`` names (relative to
-    ``base_dir``), read once here (mesh_file caches it); UserError (one line, without file or
-    element) if it cannot be found or is not a mesh this simulator reads."""
+    ``base_dir``), read once here with its ``scale`` (mesh_file caches it); UserError (one
+    line, without file or element) if it cannot be found, is not a mesh this simulator reads,
+    or reaches beyond the world once scaled."""
     path = resolve_uri(uri, base_dir)
-    load_mesh(path)
+    load_mesh(path, scale)
     return path
 
 
@@ -384,7 +385,7 @@ class _Reader(XmlReader):
                 self.fail(shape, "scale=%r is not three non-zero numbers (x y z factors)"
                            % shape.get("scale"), owner)
             try:
-                path = mesh_path(uri, self.base_dir)
+                path = mesh_path(uri, self.base_dir, scale)
             except UserError as err:
                 self.fail(shape, str(err), owner)
             return Geometry("mesh", scale, path, uri)
@@ -401,7 +402,7 @@ class _Reader(XmlReader):
         ends = []
         for tag in ("parent", "child"):
             end = self.child(elem, tag, owner)
-            link = self.attr(end, "link", owner)
+            link = self._name(end, "link")
             if link not in links:
                 self.fail(end, "link %r is not defined in this file" % link, owner)
             ends.append(link)
@@ -447,8 +448,14 @@ class _Reader(XmlReader):
     def _number(self, elem, key, owner) -> float:
         return self.attr_floats(elem, key, 1, owner)[0]
 
-    def _name(self, elem) -> str:
-        return self.attr(elem, "name")
+    def _name(self, elem, key: str = "name") -> str:
+        """The required attribute ``key`` naming a robot, link, joint or material: at most
+        limits.MAX_NAME characters (refused before any message repeats it)."""
+        name = elem.get(key, "").strip()
+        problem = limits.name_problem(key, name)
+        if problem:
+            self.fail_bare(elem, "<%s>: %s" % (elem.tag, problem))
+        return self.attr(elem, key)
 
     def describe(self, elem) -> str:
         """``link 'a'`` for a named robot, link, joint or material, else ``<tag>``."""

@@ -96,6 +96,14 @@ def _checked_world_state(name: str, pose: Pose, twist: Twist) -> None:
         raise RequestError("%s: %s" % (name, problem))
 
 
+def _check_names(prefix: str, **names) -> None:
+    """RequestError (``prefix`` and limits' one line) if a name or string field of a request
+    is longer than limits.MAX_NAME, before anything looks it up or a message repeats it."""
+    problem = limits.first(limits.name_problem(field, value) for field, value in names.items())
+    if problem:
+        raise RequestError(prefix + problem)
+
+
 def _check_times(what: str, start_ns, duration_ns) -> None:
     """RequestError unless start and duration (ns) are whole numbers within limits."""
     for field, value in (("start_time", start_ns), ("duration", duration_ns)):
@@ -141,6 +149,7 @@ class WorldControl:
 
     def get_model_state(self, name: str, relative: str = "") -> Tuple[Pose, Twist, int]:
         """(pose, twist, header seq) of model ``name`` relative to ``relative``."""
+        _check_names("GetModelState: ", model_name=name, relative_entity_name=relative)
         model = self._model(name, "GetModelState")
         frame = self._frame(relative, "GetModelState")
         pose, twist = model.pose(), model.twist()
@@ -154,6 +163,7 @@ class WorldControl:
     def set_model_state(self, name: str, pose: Pose, twist: Twist, reference: str = "") -> None:
         """Teleport model ``name`` (quaternion normalised, all-zero = identity) and give it
         ``twist``; with a reference frame the pose is in that frame and the twist rotated."""
+        _check_names("SetModelState: ", model_name=name, reference_frame=reference)
         pose, twist = _checked_state("SetModelState", pose, twist)
         model = self._model(name, "SetModelState")
         frame = self._frame(reference, "SetModelState")
@@ -176,6 +186,7 @@ class WorldControl:
                                % (what, scoped)) from None
 
     def get_link_state(self, scoped: str, reference: str = "") -> Tuple[Pose, Twist]:
+        _check_names("GetLinkState: ", link_name=scoped, reference_frame=reference)
         model, _ = self._link(scoped, "GetLinkState")
         frame = self._frame(reference, "GetLinkState")
         pose, twist = next((p, t) for n, p, t in model.link_states() if n == scoped)
@@ -185,6 +196,7 @@ class WorldControl:
         return pose, twist
 
     def set_link_state(self, scoped: str, pose: Pose, twist: Twist, reference: str = "") -> None:
+        _check_names("SetLinkState: ", link_name=scoped, reference_frame=reference)
         pose, twist = _checked_state("SetLinkState", pose, twist)
         model, link = self._link(scoped, "SetLinkState")
         if link.body is None or link.index >= 0:
@@ -209,6 +221,7 @@ class WorldControl:
     # --- properties --------------------------------------------------------------------------
 
     def model_properties(self, name: str) -> ModelProperties:
+        _check_names("GetModelProperties: ", model_name=name)
         model = self._model(name, "GetModelProperties")
         return ModelProperties([link.name for link in model.links], list(model.geoms),
                                list(model.joints), model.static)
@@ -219,6 +232,8 @@ class WorldControl:
               kind: str = "sdf", robot_namespace: str = "") -> None:
         """Add model ``name`` built from ``xml`` at ``pose`` (in ``reference``); a robot URDF
         (one with plugins) becomes a robot whose topics and frames are in ``robot_namespace``."""
+        _check_names("SpawnModel: Failure - ", model_name=name, reference_frame=reference,
+                     robot_namespace=robot_namespace)
         check_model_name(name)
         if name in self.models:
             raise RequestError("SpawnModel: Failure - entity already exists.")
@@ -326,6 +341,7 @@ class WorldControl:
             os.unlink(path)
 
     def delete(self, name: str) -> None:
+        _check_names("DeleteModel: ", model_name=name)
         model = self._model(name, "DeleteModel")  # refuses an unknown name
         self.sim.forces.forget_model(name)   # its wrenches and efforts go with it
         key, built = self._spawned.pop(name, (None, []))
@@ -390,6 +406,7 @@ class WorldControl:
         adds ``point x force`` to the torque about it. Another model or scoped link: force,
         torque and ``point`` are in that frame's axes and ``point`` is a position in it. The
         wrench is turned into world axes once, now, and then held (Gazebo holds it too)."""
+        _check_names("ApplyBodyWrench: ", body_name=body, reference_frame=reference_frame)
         found = self._scoped_link(body)
         if found is None:
             raise RequestError("ApplyBodyWrench: body does not exist")
@@ -451,10 +468,24 @@ class WorldControl:
                         return model, part.body, j, info
         raise RequestError("%s: joint not found" % what)
 
+    def _listed_joint(self, name: str) -> Optional[str]:
+        """The <joint type> of the first model (in world order, or the one "model::joint"
+        names) that lists joint ``name`` without simulating it; None if none does."""
+        model_name, sep, joint_name = name.rpartition("::")
+        if sep and model_name in self.models:
+            candidates = [self.models.get(model_name)]
+        else:
+            candidates, joint_name = self.models.models(), name
+        for model in candidates:
+            if joint_name in model.joint_types:
+                return model.joint_types[joint_name]
+        return None
+
     def apply_joint_effort(self, joint: str, effort: float, start_ns: int = 0,
                            duration_ns: int = -1) -> None:
         """Add ``effort`` (N m, or N on a prismatic joint) to ``joint`` from ``start_ns`` for
         ``duration_ns`` (< 0: until clear_joint_forces)."""
+        _check_names("ApplyJointEffort: ", joint_name=joint)
         if not math.isfinite(effort):
             raise RequestError("ApplyJointEffort: NaN or infinite effort")
         problem = limits.outside("effort", effort, -limits.MAX_FORCE, limits.MAX_FORCE,
@@ -488,6 +519,7 @@ class WorldControl:
         return info[0], tuple(com[0]), rotation, np.array(info[2], dtype=float)
 
     def get_link_properties(self, scoped: str) -> LinkProperties:
+        _check_names("GetLinkProperties: ", link_name=scoped)
         found = self._scoped_link(scoped)
         if found is None:
             raise RequestError("GetLinkProperties: link not found, did you forget to scope the "
@@ -508,6 +540,7 @@ class WorldControl:
         mass, link axes, kg m^2) and whether gravity pulls it. ``com`` (the centre of mass in
         the link frame, m) must stay where it is: pybullet cannot move it in a built body;
         the com orientation is ignored, as Gazebo ignores it."""
+        _check_names("SetLinkProperties: ", link_name=scoped)
         found = self._scoped_link(scoped)
         if found is None:
             raise RequestError("SetLinkProperties: link not found, did you forget to scope the "
@@ -548,7 +581,17 @@ class WorldControl:
                                     float(mass))
 
     def get_joint_properties(self, joint: str) -> JointProperties:
-        _, body, index, info = self._joint(joint, "GetJointProperties")
+        """A movable joint's kind, damping, position and rate; a joint get_model_properties
+        lists that is not simulated (an SDF model's: its links do not move about it) is of its
+        <joint type>, at 0 and still."""
+        _check_names("GetJointProperties: ", joint_name=joint)
+        try:
+            _, body, index, info = self._joint(joint, "GetJointProperties")
+        except RequestError:
+            kind = self._listed_joint(joint)
+            if kind is None:
+                raise
+            return JointProperties(kind, [0.0], [0.0], [0.0])
         position, rate = pybullet.getJointState(body, index,
                                                 physicsClientId=self.sim.physics.client)[:2]
         return JointProperties(JOINT_KINDS.get(info[2], "revolute"), [float(info[6])],
@@ -559,6 +602,9 @@ class WorldControl:
         """Put the named joints of model ``name`` at ``positions`` (rad or m), at rest; the
         model's root link stays where it is. Joints the model does not have are ignored, as
         Gazebo ignores them; the answer (Gazebo's status text) names them."""
+        _check_names("SetModelConfiguration: ", model_name=name)
+        _check_names("SetModelConfiguration: ", **{"joint_names[%d]" % i: joint
+                                                   for i, joint in enumerate(joints)})
         model = self._model(name, "SetModelConfiguration")
         if len(joints) != len(positions):
             raise RequestError("SetModelConfiguration: joint name and position list have "
@@ -605,6 +651,7 @@ class WorldControl:
         return self._lights
 
     def get_light(self, name: str) -> Light:
+        _check_names("getLightProperties: ", light_name=name)
         light = self.lights().get(name)
         if light is None:
             raise RequestError("getLightProperties: Requested light %s not found!" % name)
@@ -615,6 +662,7 @@ class WorldControl:
                   direction: Sequence[float], pose: Pose) -> None:
         """Keep what set_light_properties gives: ``attenuation`` (constant, linear,
         quadratic); the pose's quaternion normalised (all-zero: identity)."""
+        _check_names("setLightProperties: ", light_name=name)
         light = self.lights().get(name)
         if light is None:
             raise RequestError("setLightProperties: Requested light %s not found!" % name)

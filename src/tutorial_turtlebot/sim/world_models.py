@@ -80,6 +80,8 @@ class WorldModel:
     spawn_pose: Pose                 # where reset_world / reset_simulation put it
     client: int
     joints: List[str] = field(default_factory=list)
+    # the kinds of joints that are listed but not simulated (an SDF model's), by name
+    joint_types: Dict[str, str] = field(default_factory=dict)
     geoms: List[str] = field(default_factory=list)
     reset_hook: Optional[Callable[[], None]] = None   # the robot's own reset
     remove_hook: Optional[Callable[[], None]] = None  # the robot's own removal
@@ -331,7 +333,8 @@ def models_of_world(world: World, bodies: Dict[str, int], cid: int,
                 links.append(LinkPart(local, body=body, in_body=in_body))
         geoms = [s.name.rsplit("::", 1)[1] for s in shapes if s.collision]
         out.append(WorldModel(spec.name, spec.static, source, parts, links, model_pose, cid,
-                              joints=list(spec.joints), geoms=geoms,
+                              joints=list(spec.joints),
+                              joint_types=dict(zip(spec.joints, spec.joint_types)), geoms=geoms,
                               rebuild_hook=_sdf_rebuilder(world, spec.name, cid, source)))
     return out
 

@@ -114,6 +114,7 @@ class Model:
     static: bool
     links: Tuple[Link, ...]
     joints: Tuple[str, ...] = ()
+    joint_types: Tuple[str, ...] = ()    # each joint's <joint type> (revolute, fixed ...)
 
 
 @dataclass(frozen=True)
@@ -289,7 +290,7 @@ class _Loader(XmlReader):
         self.depth = depth
         self.shapes: List[Shape] = []
         self._links: List[Link] = []
-        self._joints: List[str] = []
+        self._joints: List[Tuple[str, str]] = []    # (name, type)
 
     # numbers
 
@@ -351,11 +352,11 @@ class _Loader(XmlReader):
 
     def top_model(self, node: Element, parent: XyzRpy) -> Model:
         self._links: List[Link] = []
-        self._joints: List[str] = []
+        self._joints: List[Tuple[str, str]] = []
         name = self.model(node, parent, "", False)
         pose = compose_xyz_rpy(parent, self.pose(node))
         return Model(name, pose, self.flag(node, "static", False), tuple(self._links),
-                     tuple(self._joints))
+                     tuple(n for n, _ in self._joints), tuple(t for _, t in self._joints))
 
     def include(self, node: Element, parent: XyzRpy, scope: str,
                 parent_static: bool = False) -> List[Model]:
@@ -417,13 +418,16 @@ class _Loader(XmlReader):
             elif child.tag == "include":
                 self.include(child, pose, scope, static)
             elif child.tag == "joint":
-                self._joints.append(self.name(child))
+                self._joints.append((self.name(child), child.attrib.get("type", "")))
         return name
 
     def name(self, node: Element) -> str:
         name = node.attrib.get("name", "")
         if not name:
             self.fail_bare(node, "<%s> needs a name attribute" % node.tag)
+        problem = limits.name_problem("<%s> name" % node.tag, name)
+        if problem:
+            self.fail_bare(node, problem)
         return name
 
     def link(self, node: Element, parent: XyzRpy, scope: str, static: bool) -> None:
