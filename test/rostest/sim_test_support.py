@@ -254,6 +254,8 @@ class NodeProcess:
     /dev/null and stdout and stderr collected; stopped with a signal as Ctrl-C stops it."""
 
     def __init__(self, name: str, *args: str, env=None):
+        env = dict(os.environ if env is None else env)
+        env.pop("PYTHONUNBUFFERED", None)   # as on a user's machine: output is the node's to flush
         self.proc = subprocess.Popen([executable(name)] + list(args),
                                      stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                                      stderr=subprocess.PIPE, env=env)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""rostest node: spawns that once killed, froze or choked the sim (issue 28), through the real
-/gazebo services. Each is answered in one line naming the file, line or field, and the sim
+"""rostest node: spawns that once killed, froze or choked the sim, through the real /gazebo
+services. Each is answered in one line naming the file, line or field, and the sim
 lives on: its clock runs, its robot's /odom and /scan keep coming, the world API answers, and
 nothing of the refused model is left. A world whose model.config is /dev/zero ends a sim's
 start-up in one line. Every wait is on wall time with a limit."""
@@ -143,7 +143,8 @@ class AbuseSpawnsTest(unittest.TestCase):
         mesh = "<geometry><mesh><uri>%s</uri></mesh></geometry>" % obj
         self.refused(lambda: self.gz.spawn_sdf_model(
             "painted", sdf_with("<collision name='c'>%s</collision>" % mesh), "",
-            pose(1.0, -1.0), ""), "painted", "painted.mtl: cannot read a file the mesh names: it is a FIFO")
+            pose(1.0, -1.0), ""), "painted",
+            "painted.mtl: cannot read a file the mesh names: it is a FIFO")
 
     def test_a_10_mb_model_name_is_refused(self):
         self.refused(lambda: self.gz.spawn_sdf_model(

@@ -1,6 +1,6 @@
 """Reading the files a world or a robot names (sim/file_read): regular files only, at most their
-kind's size, every refusal one line; a FIFO, /dev/stdin or /dev/zero is never read (issue 28:
-they froze the sim or filled its memory)."""
+kind's size, every refusal one line; a FIFO, /dev/stdin or /dev/zero is never read (they once
+froze the sim or filled its memory)."""
 import os
 import stat
 

@@ -234,7 +234,7 @@ def test_urdf_joint_limits_are_checked(attributes, field):
     assert read_urdf_text(fine, "model_xml").joints["j"].type == "revolute"
 
 
-# --- names (issue 28: a 10 MB model_name was taken, and said again in every model_states) ------
+# --- names (a 10 MB model_name was once taken, and said again in every model_states) ---------
 
 LONG = "m" * 10_000_000
 NAMED = [

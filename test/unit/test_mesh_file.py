@@ -367,7 +367,7 @@ def test_errors_are_one_line(tmp_path):
                    "no triangles")
 
 
-# --- under abuse (issue 28) ----------------------------------------------------------------------
+# --- under abuse: files that are no regular files, or too big; vertices beyond the world --------
 
 def triangles_stl(name=b"binary stl"):
     """A binary STL of two triangles (a unit square), exactly as long as its count says."""

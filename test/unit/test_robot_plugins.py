@@ -314,13 +314,14 @@ BAD = {
                                                "update_rate -5 is outside [1e-06, 1e+06] Hz "
                                                "(or 0: every physics step)"]),
     "imu_rate_negative": ("<updateRate>200</updateRate>", "<updateRate>-1</updateRate>",
-                          "<updateRate>-1", ["plugin 'imu_plugin'", "<updateRate>", "updateRate -1 is outside"]),
+                          "<updateRate>-1", ["plugin 'imu_plugin'", "<updateRate>",
+                                             "updateRate -1 is outside"]),
     "drive_rate_negative": ("<updateRate>30</updateRate>", "<updateRate>-30</updateRate>",
                             "<updateRate>-30", ["plugin 'turtlebot3_burger_controller'",
                                                 "<updateRate>", "updateRate -30 is outside"]),
     "separation_zero": ("<wheelSeparation>0.160</wheelSeparation>",
                         "<wheelSeparation>0</wheelSeparation>", "<wheelSeparation>",
-                        ["<wheelSeparation>", "wheelSeparation 0 must be positive, at most 10000 m"]),
+                        ["<wheelSeparation>", "wheelSeparation 0 is outside [0.01, 10000] m"]),
     "separation_not_a_number": ("<wheelSeparation>0.160</wheelSeparation>",
                                 "<wheelSeparation>wide</wheelSeparation>", "<wheelSeparation>",
                                 ["<wheelSeparation>", "must be a number, got 'wide'"]),
@@ -328,10 +329,12 @@ BAD = {
                           "<wheelDiameter>-0.066</wheelDiameter>", "<wheelDiameter>",
                           ["<wheelDiameter>", "wheelDiameter -0.066 is outside [0.01, 10000] m"]),
     "torque_zero": ("<wheelTorque>10</wheelTorque>", "<wheelTorque>0</wheelTorque>",
-                    "<wheelTorque>", ["<wheelTorque>", "wheelTorque 0 must be positive, at most 1e+06 N m"]),
+                    "<wheelTorque>", ["<wheelTorque>",
+                                      "wheelTorque 0 must be positive, at most 1e+06 N m"]),
     "acceleration_negative": ("<wheelAcceleration>1</wheelAcceleration>",
                               "<wheelAcceleration>-1</wheelAcceleration>", "<wheelAcceleration>",
-                              ["<wheelAcceleration>", "wheelAcceleration -1 is outside [0, 1e+06] m/s^2"]),
+                              ["<wheelAcceleration>",
+                               "wheelAcceleration -1 is outside [0, 1e+06] m/s^2"]),
     "acceleration_nan": ("<wheelAcceleration>1</wheelAcceleration>",
                          "<wheelAcceleration>nan</wheelAcceleration>", "<wheelAcceleration>",
                          ["<wheelAcceleration>", "must be a number, got 'nan'"]),
@@ -375,7 +378,7 @@ BAD_CAMERA = {
                                               "update_rate -30 is outside"]),
 }
 
-# Under abuse (issue 28): every number of the plugin blocks is held to limits, refused at parse
+# Under abuse: every number of the plugin blocks is held to limits, refused at parse
 # time in limits' wording, before anything is built (1e39 once half-added a robot and ended the
 # sim; 16385 samples ended it at the first scan subscriber; wheelDiameter 1e-300 flipped it).
 HUGE = {
@@ -390,7 +393,8 @@ HUGE = {
     "samples_3e8": ("<samples>360</samples>", "<samples>300000000</samples>", "<samples>",
                     ["<samples>", "samples 300000000 is outside [1, 3600]"]),
     "scan_resolution": ("<resolution>1</resolution>", "<resolution>1e300</resolution>",
-                        "<resolution>1e300", ["<resolution>", "resolution 1e+300 must be positive, at most 10000"]),
+                        "<resolution>1e300",
+                        ["<resolution>", "resolution 1e+300 must be positive, at most 10000"]),
     "angle_1e300": ("<min_angle>0.0</min_angle>", "<min_angle>-1e300</min_angle>",
                     "<min_angle>", ["<min_angle>", "min_angle -1e+300 is outside [-1e+06, 1e+06] "
                                                    "rad"]),
@@ -412,7 +416,8 @@ HUGE = {
                         ["plugin 'imu_plugin' (libgazebo_ros_imu.so) <gaussianNoise>",
                          "gaussianNoise 1e+200 is outside [0, 1000]"]),
     "imu_rate_tiny": ("<updateRate>200</updateRate>", "<updateRate>1e-300</updateRate>",
-                      "<updateRate>1e-300", ["plugin 'imu_plugin'", "updateRate 1e-300 is outside"]),
+                      "<updateRate>1e-300",
+                      ["plugin 'imu_plugin'", "updateRate 1e-300 is outside"]),
     "diameter_1e-300": ("<wheelDiameter>0.066</wheelDiameter>",
                         "<wheelDiameter>1e-300</wheelDiameter>", "<wheelDiameter>",
                         ["<wheelDiameter>", "wheelDiameter 1e-300 is outside [0.01, 10000] m"]),
@@ -421,7 +426,10 @@ HUGE = {
                        ["<wheelDiameter>", "1e+300 is outside [0.01, 10000] m"]),
     "separation_1e300": ("<wheelSeparation>0.160</wheelSeparation>",
                          "<wheelSeparation>1e300</wheelSeparation>", "<wheelSeparation>",
-                         ["wheelSeparation 1e+300 must be positive, at most 10000 m"]),
+                         ["wheelSeparation 1e+300 is outside [0.01, 10000] m"]),
+    "separation_1e-300": ("<wheelSeparation>0.160</wheelSeparation>",
+                          "<wheelSeparation>1e-300</wheelSeparation>", "<wheelSeparation>",
+                          ["wheelSeparation 1e-300 is outside [0.01, 10000] m"]),
     "torque_1e300": ("<wheelTorque>10</wheelTorque>", "<wheelTorque>1e300</wheelTorque>",
                      "<wheelTorque>", ["wheelTorque 1e+300 must be positive, at most 1e+06 N m"]),
     "acceleration_1e300": ("<wheelAcceleration>1</wheelAcceleration>",

@@ -306,3 +306,24 @@ def test_setup_sh_refuses_before_installing_anything(tmp_path):
     assert run.returncode == 1
     assert len(run.stderr.splitlines()) == 1 and "needs ROS Noetic first" in run.stderr
     assert not trace.exists(), trace.read_text()
+
+
+# --- what Debian 13 needs that Debian 12 pulled in by itself ---------------------------------------
+
+def test_debian_12_and_13_install_ros_environment_and_xauth():
+    # ros-environment's catkin hook sets ROS_PACKAGE_PATH (rospack, roslaunch find nothing
+    # without it); xvfb-run needs xauth. Debian 12 pulled both in through other packages.
+    for release, python in ((DEBIAN_12, (3, 11)), (DEBIAN_13, (3, 13))):
+        apt = make_plan(release, noetic=False, python=python).apt
+        assert "ros-environment" in apt and "xauth" in apt
+
+
+def test_a_source_build_gets_gcc_14s_flag_and_a_kept_wheel():
+    source = make_plan(DEBIAN_13, noetic=False, python=(3, 13))
+    assert source.build_cflags == "-Wno-error=incompatible-pointer-types"
+    assert source.wheel_cache == "pybullet-3.2.7-py3.13-numpy2"
+    shell = source.shell()
+    assert "PLAN_BUILD_CFLAGS=-Wno-error=incompatible-pointer-types" in shell
+    assert "PLAN_WHEEL_CACHE=pybullet-3.2.7-py3.13-numpy2" in shell
+    wheel = make_plan(DEBIAN_12, noetic=False, python=(3, 11))
+    assert wheel.build_cflags == "" and wheel.wheel_cache == ""

@@ -1,7 +1,7 @@
 """The /gazebo node's hold on its robots (gazebo/sim_node, no ROS master: stand-in publishers,
 subscriber and service; a real Simulation): a robot whose topics cannot be made is taken out of
 the world again with a one-line error, and one robot's output that fails is skipped and named
-in one line while the others go on (issue 28: both once ended the node)."""
+in one line while the others go on (both once ended the node)."""
 import pytest
 
 from tutorial_turtlebot.gazebo import robot_topics, sim_node

@@ -116,7 +116,7 @@ def test_errors_inside_an_included_model_name_its_file(tmp_path, models):
     assert "bad/model.sdf:6: <size>: must be 3 numbers" in message
 
 
-# --- under abuse (issue 28): only regular files are read -----------------------------------------
+# --- under abuse: only regular files are read -----------------------------------------------------
 
 @pytest.mark.parametrize("target", ["/dev/stdin", "/dev/zero", "fifo"])
 def test_an_include_of_what_is_no_regular_file_is_refused_at_its_line(tmp_path, target):

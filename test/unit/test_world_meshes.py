@@ -157,7 +157,7 @@ def test_a_broken_mesh_is_one_line_naming_the_file_and_the_line(tmp_path):
 ])
 def test_a_spawned_mesh_beyond_the_world_is_refused(tmp_path, empty, monkeypatch, static,
                                                     coordinate, scale, words):
-    """Issue 28: these were taken, the static one blinding the laser (0 hits of 360), the
+    """These were once taken, the static one blinding the laser (0 hits of 360), the
     movable ones falling through the floor."""
     sim, wc = empty
     (tmp_path / "far.obj").write_text("v 0 0 0\nv %s 0 0\nv 0 1 0\nv 0 0 1\n"

@@ -63,6 +63,7 @@ from . import tcpros_guard, unreachable_publishers
 from .master_watch import MasterWatch
 from .world_api import WorldApi
 from ..errors import UserError
+from ..node_output import line_buffered
 from ..sim.kinematics import yaw_from_quat
 from .nonblocking_publisher import Backlog, make_nonblocking
 from .packed_messages import PackedClock
@@ -102,6 +103,11 @@ OUTPUT_ERROR_PERIOD = 10.0
 
 
 _private_params = None   # the node's private parameters, read from the master once
+
+
+def _one_line(err: Exception) -> str:
+    """"OverflowError: float too large to pack": an unexpected exception, in one short line."""
+    return "%s: %s" % (type(err).__name__, " ".join(str(err).split())[:300])
 
 
 def _param(name, default, kind, allow_empty=False):
@@ -208,9 +214,8 @@ class SimNode:
                     self.robot_topics[name] = RobotTopics(robot, self._publisher, self.tf_pub)
                 except Exception as err:  # noqa: BLE001 - one robot must not end the node
                     self.sim.models.remove(name)
-                    failed = failed or RequestError(
-                        "robot %r: its topics could not be made: %s: %s"
-                        % (name, type(err).__name__, " ".join(str(err).split())[:300]))
+                    failed = failed or RequestError("robot %r: its topics could not be made: %s"
+                                                    % (name, _one_line(err)))
                     continue
                 for warning in robot.warnings:
                     rospy.logwarn("%s: %s", name, warning)
@@ -248,8 +253,8 @@ class SimNode:
         if now < self._output_errors.get(key, -math.inf):
             return
         self._output_errors[key] = now + OUTPUT_ERROR_PERIOD
-        rospy.logerr("gazebo: robot %s: its %s failed and was skipped: %s: %s", robot, output,
-                     type(err).__name__, " ".join(str(err).split())[:300])
+        rospy.logerr("gazebo: robot %s: its %s failed and was skipped: %s", robot, output,
+                     _one_line(err))
 
     def _publish_clock(self, stamp) -> None:
         # The sim's own rospy time follows its clock directly (see main: no /clock round trip).
@@ -454,9 +459,7 @@ def main() -> None:
     # publish, holding its locks) and could hang there; here the signal only asks the loop to
     # stop, and the loop shuts ROS down when it is between steps.
     sys.setswitchinterval(GIL_SWITCH_INTERVAL)
-    # rospy writes its log lines to stdout and never flushes: into roslaunch's log file or a
-    # pipe they would come kilobytes late (unless PYTHONUNBUFFERED is set).
-    sys.stdout.reconfigure(line_buffering=True)
+    line_buffered()
     rospy.init_node("gazebo", disable_signals=True)
     # Before the first topic and service: a client that stalls in its handshake (or is not a
     # ROS client at all) must not keep the others out.

@@ -54,6 +54,7 @@ from geometry_msgs.msg import Point, Pose, Quaternion
 from std_srvs.srv import Empty
 
 from ..errors import UserError
+from ..node_output import line_buffered
 from ..sim import xml_reader
 from ..sim.kinematics import quat_from_rpy as quaternion_from_rpy  # noqa: F401 - its -R -P -Y
 
@@ -401,6 +402,7 @@ class Spawner:
 
 def main(argv: Optional[List[str]] = None) -> None:
     """Entry point of scripts/spawn_model."""
+    line_buffered()
     argv = rospy.myargv(sys.argv if argv is None else argv)
     try:
         args, model_xml = pre_ros(argv, rospy.get_namespace())

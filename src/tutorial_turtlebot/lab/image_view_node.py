@@ -40,6 +40,7 @@ from sensor_msgs.msg import CompressedImage, Image
 
 from .image_decoding import (FrameRate, ImageDecodeError, UnsupportedEncoding,
                              decode_compressed, decode_image, fit_scale, scaled_size)
+from ..node_output import line_buffered
 
 BUFF_SIZE = 1 << 24     # bytes: one 1920x1080 frame of any supported encoding (<= 8.3 MB)
 POLL_PERIOD_MS = 10     # how often the window looks for a new frame (wall time)
@@ -269,6 +270,7 @@ def _open_window():
 def main() -> None:
     """Entry point of scripts/image_view."""
     tkinter, root, photo_class, pil_image = _open_window()
+    line_buffered()
     rospy.init_node("image_view", anonymous=True)
     transport = rospy.get_param("~image_transport", "raw")
     if transport not in ("raw", "compressed"):

@@ -13,6 +13,7 @@ from geometry_msgs.msg import Twist
 from sensor_msgs.msg import LaserScan
 
 from ..sim.robot_models import MODEL_NAMES
+from ..node_output import line_buffered
 
 # Wall-clock seconds the zero Twist is given to leave on shutdown (sim time may have stopped).
 SHUTDOWN_GRACE = 0.3
@@ -62,9 +63,7 @@ def init_node(name: str, **kwargs) -> None:
         sys.stderr.write("%s: namespace %r is not a legal ROS name: use letters, digits, _ and /, "
                          "starting with a letter (e.g. tb3_1)\n" % (name, namespace))
         sys.exit(2)
-    # rospy writes its log lines to stdout and never flushes: into roslaunch's log file or a
-    # pipe they would come kilobytes late (unless PYTHONUNBUFFERED is set).
-    sys.stdout.reconfigure(line_buffering=True)
+    line_buffered()
     rospy.init_node(name, **kwargs)
 
 

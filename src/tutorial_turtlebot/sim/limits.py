@@ -39,7 +39,9 @@ MAX_LASER_SAMPLES = 3600    # rays per scan (0.1 degree steps), as the lidar_sam
 MAX_IMAGE_SIDE = 4096       # px: a camera image's width or height (renderer buffers, memory)
 MAX_NOISE = 1e3             # a noise's mean or standard deviation, in its sensor's unit
 MAX_ACCELERATION = 1e6      # m/s^2: a wheel's acceleration
-MIN_WHEEL_DIAMETER = 0.01   # m: a diff drive's wheel (its spin is the speed over the radius)
+MIN_WHEEL_SIZE = 0.01       # m: a diff drive's wheel diameter and wheel separation (a wheel
+                            # spins at the speed over its radius, a turn is rim speeds over the
+                            # separation)
 # Names (models, links, joints, frames, namespaces, topics) and the other string fields
 MAX_NAME = 256              # characters
 

@@ -354,8 +354,8 @@ class _PluginReader(XmlReader):
             update_rate=self._rate(elem, "updateRate", 100.0, elem),
             left_joint=self._wheel_joint(elem, "leftJoint", "left_joint"),
             right_joint=self._wheel_joint(elem, "rightJoint", "right_joint"),
-            wheel_separation=number(elem, "wheelSeparation", 0.34, elem, _SIZE),
-            wheel_diameter=number(elem, "wheelDiameter", 0.15, elem, _WHEEL_DIAMETER),
+            wheel_separation=number(elem, "wheelSeparation", 0.34, elem, _WHEEL),
+            wheel_diameter=number(elem, "wheelDiameter", 0.15, elem, _WHEEL),
             wheel_acceleration=number(elem, "wheelAcceleration", 0.0, elem, _ACCELERATION),
             wheel_torque=number(elem, "wheelTorque", 5.0, elem, _TORQUE),
             robot_namespace=self._topic(elem, "robotNamespace", ""),
@@ -631,6 +631,7 @@ class _PluginReader(XmlReader):
     def _warn(self, message: str) -> None:
         self.warnings.append(message)
 
+
 # --- the bounds of the numbers (limits.outside's arguments) ------------------------------------
 
 class _Bounds(NamedTuple):
@@ -648,8 +649,7 @@ _FIELD_OF_VIEW = _Bounds(0.0, math.pi, "rad", low_open=True, high_open=True)
 _FACTOR = _Bounds(0.0, limits.MAX_SCALE, low_open=True)
 _NOISE = _Bounds(0.0, limits.MAX_NOISE)                      # a standard deviation
 _NOISE_MEAN = _Bounds(-limits.MAX_NOISE, limits.MAX_NOISE)
-_SIZE = _Bounds(0.0, limits.MAX_SIZE, "m", low_open=True)
-_WHEEL_DIAMETER = _Bounds(limits.MIN_WHEEL_DIAMETER, limits.MAX_SIZE, "m")
+_WHEEL = _Bounds(limits.MIN_WHEEL_SIZE, limits.MAX_SIZE, "m")   # a diameter, a separation
 _ACCELERATION = _Bounds(0.0, limits.MAX_ACCELERATION, "m/s^2")
 _TORQUE = _Bounds(0.0, limits.MAX_FORCE, "N m", low_open=True)
 _BASELINE = _Bounds(-limits.MAX_SIZE, limits.MAX_SIZE, "m")

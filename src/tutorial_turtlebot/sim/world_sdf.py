@@ -9,7 +9,8 @@ one extruded ``polyline`` or a ``mesh`` (Collada, STL, OBJ: ``mesh_file``) geome
 "x y z roll pitch yaw" (``degrees="true"`` allowed); visual ``<material>`` colours; ``<include>``
 of a model folder found as Gazebo finds it (``asset_uri``: ``model://`` through GAZEBO_MODEL_PATH
 and the package's own ``models/``, which has Gazebo's ``ground_plane`` and ``sun``), with its
-``<name>``, ``<pose>`` and ``<static>`` overrides, nested to any depth up to MAX_INCLUDE_DEPTH. A
+``<name>``, ``<pose>`` and ``<static>`` overrides, nested to any depth up to MAX_INCLUDE_DEPTH;
+what an include or a mesh names is read only from a regular file (``file_read``). A
 model's links keep their ``<inertial>`` (SDF's defaults where absent: 1 kg, inertia 1 kg m^2
 about each axis) and each collision its ``<surface><friction><ode><mu>`` (default 1), so that a
 model that is not ``<static>`` can be a movable rigid body. Elements that do not shape the world
