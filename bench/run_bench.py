@@ -47,8 +47,15 @@ Measured (Burger in turtlebot3_world unless said):
                     sim RSS at the start and the end, growth over the last third (not in the
                     default groups: it takes 15 to 20 wall minutes)
 
+  hostile           bench/hostile_soak.py: the hostile requests that once killed, froze or
+                    choked the sim, replayed for 10 wall minutes against one sim at real time:
+                    alive at the end, the longest wall gap between two /clock messages, sim
+                    RSS and CPU per sim second at the start and the end (not in the default
+                    groups: it takes about 12 minutes)
+
 ``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, jitter, fast, world,
-subscribers, camera, render, meshes, multi, soak); the default is all of them but soak.
+subscribers, camera, render, meshes, multi, soak, hostile); the default is all of them but
+soak and hostile.
 """
 import argparse
 import os
@@ -683,7 +690,7 @@ def median(values):
 
 GROUPS = ("startup", "realtime", "jitter", "fast", "world", "subscribers", "camera", "render",
           "meshes", "multi")
-EXTRA_GROUPS = ("soak",)   # long: run only when named in --only
+EXTRA_GROUPS = ("soak", "hostile")   # long: run only when named in --only
 
 
 def measure_soak():
@@ -699,13 +706,30 @@ def measure_soak():
     return tuple(float(v) for v in found.groups())
 
 
+def measure_hostile(minutes=10.0):
+    """bench/hostile_soak.py's RESULT line: {gap, rss_start, rss_end, cpu_start, cpu_end,
+    alive}."""
+    out = subprocess.run([sys.executable, os.path.join(HERE, "hostile_soak.py"), "--minutes",
+                          str(minutes)], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                         text=True, check=False).stdout
+    line = [l for l in out.splitlines() if l.startswith("RESULT ")]
+    if not line:
+        raise RuntimeError("hostile_soak.py gave no result: %s" % out[-500:])
+    fields = line[-1].split()[1:]
+    keys = ("gap", "rss_start", "rss_end", "cpu_start", "cpu_end")
+    result = dict(zip(keys, (float(v) for v in fields[:5])))
+    result["alive"] = fields[5] == "alive"
+    result["rss_idle"], result["rounds"] = float(fields[6]), int(fields[7])
+    return result
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", type=int, default=3, help="runs per figure (median)")
     parser.add_argument("--only", default=",".join(GROUPS),
                         help="comma-separated groups of rows to run (default: all but "
-                        "soak, which takes 15 to 20 minutes): " + ", ".join(GROUPS + EXTRA_GROUPS))
+                        "soak and hostile, which take 15 to 20 and 12 minutes): " + ", ".join(GROUPS + EXTRA_GROUPS))
     args = parser.parse_args()
     only = [g.strip() for g in args.only.split(",") if g.strip()]
     unknown = [g for g in only if g not in GROUPS + EXTRA_GROUPS]
@@ -818,6 +842,17 @@ def main():
         row("soak, 30 sim min with churn: sim RSS at the start / at the end", "%.0f / %.0f"
             % (first, last), "MB")
         row("soak: RSS growth over the last third", "%.2f" % growth, "MB", "< 2 MB")
+    if "hostile" in only:   # one run: it is long
+        hostile = measure_hostile()
+        row("hostile soak, 10 wall min: the sim alive at the end", "yes" if hostile["alive"]
+            else "NO", "", "yes")
+        row("hostile soak: longest wall time between two /clock", "%.2f" % hostile["gap"], "s",
+            "<= 2 s")
+        row("hostile soak: sim RSS idle / after a first round / at the end", "%.0f / %.0f / %.0f"
+            % (hostile["rss_idle"], hostile["rss_start"], hostile["rss_end"]), "MB",
+            "end <= first round + 50 MB")
+        row("hostile soak: sim CPU s per sim s at the start / at the end", "%.3f / %.3f"
+            % (hostile["cpu_start"], hostile["cpu_end"]), "", "end <= start x 1.1")
     print("(%.0f s; load average now %s)" % (time.time() - started,
                                              " ".join("%.2f" % v for v in os.getloadavg())),
           flush=True)

@@ -4,6 +4,7 @@ services. Each is answered in one line naming the file, line or field, and the s
 lives on: its clock runs, its robot's /odom and /scan keep coming, the world API answers, and
 nothing of the refused model is left. A world whose model.config is /dev/zero ends a sim's
 start-up in one line. Every wait is on wall time with a limit."""
+import math
 import os
 import shutil
 import subprocess
@@ -15,6 +16,7 @@ import rospkg
 import rospy
 import rostest
 from geometry_msgs.msg import Point, Pose, Quaternion
+from rosgraph_msgs.msg import Clock
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
@@ -145,6 +147,57 @@ class AbuseSpawnsTest(unittest.TestCase):
             "painted", sdf_with("<collision name='c'>%s</collision>" % mesh), "",
             pose(1.0, -1.0), ""), "painted",
             "painted.mtl: cannot read a file the mesh names: it is a FIFO")
+
+    def _model(self, name, body):
+        folder = os.path.join(self.tmp, name)
+        os.makedirs(folder)
+        with open(os.path.join(folder, "model.config"), "w") as f:
+            f.write("<model><name>%s</name><sdf version='1.6'>model.sdf</sdf></model>" % name)
+        with open(os.path.join(folder, "model.sdf"), "w") as f:
+            f.write("<sdf version='1.6'><model name='%s'>%s</model></sdf>" % (name, body))
+        return folder
+
+    def largest_clock_gap(self, call):
+        """(what ``call()`` answered, the longest wall time between two /clock messages while
+        it ran)."""
+        arrivals = []
+        sub = rospy.Subscriber("/clock", Clock, lambda _msg: arrivals.append(time.monotonic()))
+        try:
+            rospy.sleep(0.5)
+            answer = call()
+            rospy.sleep(0.5)
+        finally:
+            sub.unregister()
+        gaps = [b - a for a, b in zip(arrivals, arrivals[1:])]
+        return answer, max(gaps)
+
+    def test_spawns_beyond_what_the_loop_may_build_are_refused_while_the_clock_runs(self):
+        """A polyline of 3,000 corners froze the loop 8 s, 2,000 ground planes left a real-time
+        factor of 0.009, and a 100 x 100 fan-out of includes (a 155-character request) took
+        36 s to spawn: each is now read outside the loop and refused before it is built."""
+        corners = "".join("<point>%g %g</point>" % (math.cos(a), 0.5 * math.sin(a))
+                          for a in (k * 2 * math.pi / 3000 for k in range(3000)))
+        polyline = sdf_with("<collision name='c'><geometry><polyline>%s<height>1</height>"
+                            "</polyline></geometry></collision>" % corners)
+        planes = ("<sdf version='1.6'><model name='m'><static>true</static>%s</model></sdf>"
+                  % "".join("<include><uri>model://ground_plane</uri><name>g%d</name></include>"
+                            % k for k in range(2000)))
+        box = self._model("fan_box", "<static>true</static><link name='l'><collision name='c'>"
+                                     "<geometry><box><size>0.1 0.1 0.1</size></box></geometry>"
+                                     "</collision></link>")
+        row = self._model("fan_row", "<static>true</static>" + "".join(
+            "<include><uri>%s</uri><name>b%d</name><pose>%g 0 0 0 0 0</pose></include>"
+            % (box, k, 0.2 * k) for k in range(100)))
+        fan = ("<sdf version='1.6'><model name='m'><static>true</static>%s</model></sdf>"
+               % "".join("<include><uri>%s</uri><name>r%d</name><pose>0 %g 0 0 0 0</pose>"
+                         "</include>" % (row, k, 0.2 * k) for k in range(100)))
+        for xml, words in ((polyline, "polyline points: 3000, more than the 256"),
+                           (planes, "more than the 1000 one spawn may build"),
+                           (fan, "more than the 1000 one spawn may build")):
+            message, gap = self.largest_clock_gap(lambda: self.refused(
+                lambda: self.gz.spawn_sdf_model("cabinet", xml, "", pose(5.0, 5.0), ""),
+                "cabinet", words))
+            self.assertLess(gap, 1.0, "/clock stalled %.1f s while %s" % (gap, message))
 
     def test_a_10_mb_model_name_is_refused(self):
         self.refused(lambda: self.gz.spawn_sdf_model(

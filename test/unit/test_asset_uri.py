@@ -3,9 +3,10 @@ import os
 
 import pytest
 
-from tutorial_turtlebot.sim.asset_uri import (PACKAGE_MODELS, AssetError, ModelPath,
-                                              _ros_exported_model_paths, model_sdf_file,
-                                              resolve_uri, split_uri)
+from tutorial_turtlebot.sim.asset_uri import (PACKAGE_MODELS, AssetError, AssetNotFound,
+                                              ModelPath, _ros_exported_model_paths,
+                                              case_mismatch, model_sdf_file, resolve_uri,
+                                              split_uri)
 from tutorial_turtlebot.sim.world_sdf import parse_xml
 
 
@@ -127,3 +128,79 @@ def test_versions_are_compared_as_numbers(tmp_path):
     folder = make_model(tmp_path, "m", (("1.6.1", "patch.sdf"), ("1.6", "model.sdf"),
                                         ("1.10", "future.sdf")))
     assert model_sdf_file(str(folder), parse_xml) == str(folder / "patch.sdf")
+
+
+# --- Gazebo's order for relative file:// URIs and paths ------------------------------------------
+
+def mesh_in(folder, relative="models/x/meshes/y.dae"):
+    path = folder / relative
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(b"")
+    return str(path)
+
+
+@pytest.fixture
+def places(tmp_path, monkeypatch):
+    """Four folders, one per step of the search, and a working directory of its own."""
+    folders = {k: tmp_path / k for k in ("model", "cwd", "resource", "model_path")}
+    for folder in folders.values():
+        folder.mkdir()
+    monkeypatch.chdir(folders["cwd"])
+    env = {"GAZEBO_RESOURCE_PATH": "%s:%s" % (tmp_path / "unset", folders["resource"]),
+           "GAZEBO_MODEL_PATH": str(folders["model_path"])}
+    return folders, ModelPath(env, ros_exports=no_ros)
+
+
+@pytest.mark.parametrize("uri", ["file://models/x/meshes/y.dae", "models/x/meshes/y.dae"])
+def test_a_relative_uri_is_searched_in_gazebos_order(places, uri):
+    """The naming file's folder, the working directory, GAZEBO_RESOURCE_PATH, the model path:
+    each step is taken when the ones before it miss, and loses to them when they hit."""
+    folders, path = places
+    base = str(folders["model"])
+    for k in ("model_path", "resource", "cwd", "model"):    # a hit one step earlier each time
+        expected = mesh_in(folders[k])
+        assert resolve_uri(uri, base, path) == expected
+    for k in ("model", "cwd", "resource", "model_path"):
+        os.remove(str(folders[k] / "models/x/meshes/y.dae"))
+    # and each alone, the others missing
+    for k in ("model_path", "resource", "cwd"):
+        expected = mesh_in(folders[k])
+        assert resolve_uri(uri, base, path) == expected
+        os.remove(expected)
+
+
+def test_a_relative_uri_found_nowhere_names_every_place(places):
+    folders, path = places
+    with pytest.raises(AssetNotFound) as err:
+        resolve_uri("file://models/x/meshes/y.dae", str(folders["model"]), path)
+    message = str(err.value)
+    assert "\n" not in message and message.startswith("file://models/x/meshes/y.dae not found")
+    for folder in folders.values():
+        assert str(folder) in message
+    assert "GAZEBO_RESOURCE_PATH (" in message and "GAZEBO_MODEL_PATH (" in message
+
+
+def test_a_name_differing_only_in_case_is_not_taken_but_named(tmp_path):
+    real = mesh_in(tmp_path, "meshes/mailbox.dae")
+    assert case_mismatch(str(tmp_path / "Meshes" / "Mailbox.DAE")) == real
+    assert case_mismatch(str(tmp_path / "meshes" / "other.dae")) is None
+    assert case_mismatch(real) is None                    # it exists: no mismatch
+    with pytest.raises(AssetNotFound) as err:
+        resolve_uri("meshes/Mailbox.DAE", str(tmp_path), ModelPath({}, ros_exports=no_ros))
+    assert "%s exists, whose name differs only in letter case" % real in str(err.value)
+    with pytest.raises(AssetNotFound) as err:
+        resolve_uri("file://" + str(tmp_path / "meshes" / "Mailbox.DAE"), "/")
+    assert "differs only in letter case" in str(err.value)
+
+
+def test_a_missing_model_says_where_gazebos_models_are(tmp_path):
+    path = ModelPath({"GAZEBO_MODEL_PATH": str(tmp_path)}, ros_exports=no_ros)
+    with pytest.raises(AssetNotFound) as err:
+        resolve_uri("model://mailbox", "/", path)
+    assert ("https://github.com/osrf/gazebo_models: download it and add its folder to "
+            "GAZEBO_MODEL_PATH") in str(err.value)
+    make_model(tmp_path, "mailbox")
+    with pytest.raises(AssetNotFound) as err:
+        resolve_uri("model://MailBox/model.sdf", "/", path)
+    assert "%s exists, whose name differs only in letter case" % (tmp_path / "mailbox"
+                                                                    / "model.sdf") in str(err.value)

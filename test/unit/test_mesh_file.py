@@ -15,8 +15,9 @@ import pytest
 
 from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.sim import mesh_file
-from tutorial_turtlebot.sim.mesh_file import (Mesh, MeshError, MeshPart, cache_clear,
-                                              convex_hull_vertices, load_mesh, write_obj_parts)
+from tutorial_turtlebot.sim.mesh_file import (Mesh, MeshError, MeshPart, MeshUnreadable,
+                                              cache_clear, convex_hull_vertices, load_mesh,
+                                              write_obj_parts)
 
 from unit_helpers import within
 
@@ -367,6 +368,73 @@ def test_errors_are_one_line(tmp_path):
                    "no triangles")
 
 
+
+def test_a_collada_file_that_cannot_be_read_is_unreadable_not_refused(tmp_path):
+    """world_sdf makes MeshUnreadable a warning (the link loads without it, as in Gazebo);
+    STL and OBJ faults and refusals of the file itself stay plain MeshErrors."""
+    (tmp_path / "text.dae").write_text("not xml at all\n")
+    (tmp_path / "points.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\n")
+    lines = '<lines count="1" material="m"><input semantic="VERTEX" source="#g-v" offset="0"/>' \
+            '<p>0 1</p></lines>'
+    for path in (tmp_path / "text.dae", write_dae(tmp_path, "lines.dae", primitives=lines),
+                 write_dae(tmp_path, "flat.dae", positions=((0, 0, 0), (0, 0, 0), (1, 1, 1)))):
+        with pytest.raises(MeshUnreadable):
+            load_mesh(str(path))
+    for path in (tmp_path / "points.obj", tmp_path / "missing.dae", tmp_path):
+        with pytest.raises(MeshError) as err:
+            load_mesh(str(path))
+        assert not isinstance(err.value, MeshUnreadable)
+
+
+# --- Collada as exporters write it ---------------------------------------------------------------
+
+def edited_dae(tmp_path, name, old, new, **kwargs):
+    path = write_dae(tmp_path, name, **kwargs)
+    with open(path) as f:
+        text = f.read()
+    assert old in text
+    with open(path, "w") as f:
+        f.write(text.replace(old, new))
+    return path
+
+
+@pytest.mark.parametrize("old, new", [
+    ("<mesh>", "<mesh><!-- exported by SketchUp -->"),                 # pycollada: no triangles
+    ("<mesh>", "<mesh><?exporter version='2'?>"),
+    ('count="9">', 'count="9"><!-- x y z -->'),                        # text cut at the comment
+    ("<p>0 1 2</p>", "<p>0 1<!-- first two --> 2</p>"),               # p cut short
+    ("</mesh>", "<extra><technique profile='MAYA'><double_sided>1</double_sided></technique>"
+                "</extra></mesh>"),
+    ('<node id="n">', '<node id="n"><extra><technique profile="FCOLLADA"><visibility>1'
+                      '</visibility></technique></extra>'),
+    ("<p>0 1 2</p>", "<p>0 1 2</p><extra><technique profile='x'/></extra>"),
+])
+def test_collada_comments_and_extras_are_read_as_gazebo_reads_them(tmp_path, old, new):
+    mesh = load_mesh(edited_dae(tmp_path, "m.dae", old, new, asset='<unit meter="0.5"/>'))
+    assert len(mesh.faces) == 1
+    assert np.allclose(mesh.bounds[1], (0.5, 0.5, 0.0))            # the unit still applies
+
+
+def test_collada_several_instances_in_a_node_are_all_read(tmp_path):
+    nodes = ('<node id="n">{geometry}<node id="up"><translate>0 0 2</translate>{geometry}</node>'
+             '<instance_geometry url="#g"/></node>')
+    mesh = load_mesh(write_dae(tmp_path, nodes=nodes))
+    assert len(mesh.faces) == 3 and np.allclose(mesh.bounds[1], (1.0, 1.0, 2.0))
+
+
+def test_collada_a_second_mesh_in_a_geometry_is_not_read(tmp_path):
+    """Gazebo's Collada loader reads the first <mesh> of a <geometry>; so does pycollada."""
+    second = ('<mesh><source id="h-p"><float_array id="h-pa" count="9">0 0 5 1 0 5 0 1 5'
+              '</float_array><technique_common><accessor source="#h-pa" count="3" stride="3">'
+              '<param name="X" type="float"/><param name="Y" type="float"/><param name="Z" '
+              'type="float"/></accessor></technique_common></source><vertices id="h-v"><input '
+              'semantic="POSITION" source="#h-p"/></vertices><triangles count="1"><input '
+              'semantic="VERTEX" source="#h-v" offset="0"/><p>0 1 2</p></triangles></mesh>')
+    mesh = load_mesh(edited_dae(tmp_path, "two.dae", "</mesh></geometry>",
+                                "</mesh>%s</geometry>" % second))
+    assert len(mesh.faces) == 1 and mesh.bounds[1][2] == 0.0
+
+
 # --- under abuse: files that are no regular files, or too big; vertices beyond the world --------
 
 def triangles_stl(name=b"binary stl"):
@@ -548,3 +616,24 @@ def test_write_obj_parts_load_in_pybullet(tmp_path):
         assert red > 170 and green < 40 and blue < 40, (red, green, blue)
     finally:
         pybullet.disconnect(cid)
+
+
+def test_the_meshes_read_are_kept_up_to_a_size_least_recently_used_first(tmp_path, monkeypatch):
+    from tutorial_turtlebot.sim import mesh_file
+    mesh_file.cache_clear()
+    paths = []
+    for k in range(3):
+        path = tmp_path / ("t%d.obj" % k)
+        path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+                        % (k + 1))
+        paths.append(str(path))
+    one = mesh_file.load_mesh(paths[0])
+    size = mesh_file._cached_bytes          # one file: its mesh, and the same at scale 1
+    monkeypatch.setattr(mesh_file, "MAX_CACHED_BYTES", 2 * size)
+    assert mesh_file.load_mesh(paths[0]) is one               # kept
+    mesh_file.load_mesh(paths[1])
+    assert mesh_file._cached_bytes <= 2 * size
+    assert mesh_file.load_mesh(paths[1]) is mesh_file.load_mesh(paths[1])
+    mesh_file.load_mesh(paths[2])
+    assert mesh_file.load_mesh(paths[0]) is not one           # forgotten, read again
+    mesh_file.cache_clear()

@@ -1,13 +1,13 @@
 """The stepping loop's sleep at a slow pace: requests are served at once, Ctrl-C ends it.
 
 A SimNode without ROS: only what its pacing sleep (``_send_on_time_until``) touches."""
-import queue
 import threading
 import time
 
 import pytest
 
 from tutorial_turtlebot.gazebo import sim_node
+from tutorial_turtlebot.gazebo.loop_requests import LoopRequests
 from tutorial_turtlebot.gazebo.nonblocking_publisher import Backlog
 from tutorial_turtlebot.sim.pacing import MIN_REAL_TIME_FACTOR, Pacer
 
@@ -29,8 +29,7 @@ def slow_node(step=0.01):
     node.paused = False
     node.stop_requested = False
     node.backlog = Backlog()
-    node._requests = queue.Queue()
-    node._wake = threading.Event()
+    node.requests = LoopRequests()
     return node
 
 
@@ -41,11 +40,8 @@ def request(node, action, delay):
 
     def call():
         time.sleep(delay)
-        done = threading.Event()
         start = time.monotonic()
-        node._requests.put((action, done))
-        node._wake.set()
-        done.wait(10.0)
+        node.requests.call(action, 10.0)
         took.append(time.monotonic() - start)
     thread = threading.Thread(target=call)
     thread.start()

@@ -249,3 +249,40 @@ def test_a_camera_looks_along_its_links_x_axis():
         assert np.mean(np.abs(rgb.astype(int) - flipped.astype(int))) > 5.0
     finally:
         sim.close()
+
+
+# --- a failed robot spawn leaves nothing ------------------------------------------------------------
+
+def _nothing_at(sim, x, y):
+    """No body but the ground between 0.01 and 1 m above (x, y): what another robot's laser
+    or a dropped box would meet."""
+    from tutorial_turtlebot.sim.bullet import pybullet
+    hit = pybullet.rayTest((x, y, 1.0), (x, y, 0.01), physicsClientId=sim.physics.client)[0]
+    return hit[0] == -1
+
+
+@pytest.mark.parametrize("stage", ["rays", "camera", "model"])
+def test_a_spawn_that_fails_at_any_stage_leaves_no_body(empty, monkeypatch, stage):
+    """The robot's body is made first; whatever fails after it (the laser's rays, the camera,
+    the world model) takes the body out again, and the name is free for the next spawn."""
+    from tutorial_turtlebot.sim import sim_robot, simulation
+
+    def boom(*_args, **_kwargs):
+        raise RuntimeError("broken on purpose")
+    target = {"rays": (sim_robot, "ray_directions"), "camera": (sim_robot, "CameraRenderer"),
+              "model": (simulation, "model_of_urdf_body")}[stage]
+    sim, wc = empty
+    names = sim.models.names()
+    assert _nothing_at(sim, 1.0, 1.0)
+    with monkeypatch.context() as patch:
+        patch.setattr(*target, boom)
+        with pytest.raises(RuntimeError, match="broken on purpose"):
+            wc.spawn("tb3_1", urdf_text("waffle_pi"), at(1.0, 1.0), kind="urdf",
+                     robot_namespace="tb3_1")
+    assert sim.models.names() == names and "tb3_1" not in sim.robots
+    assert _nothing_at(sim, 1.0, 1.0)
+    run(sim, 0.2)
+    assert _nothing_at(sim, 1.0, 1.0)
+    wc.spawn("tb3_1", urdf_text("waffle_pi"), at(1.0, 1.0), kind="urdf",
+             robot_namespace="tb3_1")                          # and it can be spawned again
+    assert not _nothing_at(sim, 1.0, 1.0)

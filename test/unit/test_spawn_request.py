@@ -119,3 +119,73 @@ def test_placed_in_a_frame_and_refusing_nan():
     assert q == pytest.approx(frame[1])
     with pytest.raises(ValueError):
         placed(((float("nan"), 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)), None)
+
+
+# --- what one spawn may cost the loop (prepare_spawn) -----------------------------------------------
+
+from tutorial_turtlebot.sim import spawn_request  # noqa: E402
+
+
+def polyline_sdf(points):
+    corners = "".join("<point>%g %g</point>" % (math.cos(a), math.sin(a))
+                      for a in (2 * math.pi * k / points for k in range(points)))
+    return ('<sdf version="1.6"><model name="p"><static>true</static><link name="l"><collision '
+            'name="c"><geometry><polyline>%s<height>0.5</height></polyline></geometry>'
+            '</collision></link></model></sdf>' % corners)
+
+
+def mesh_sdf(path, static):
+    return ('<sdf version="1.6"><model name="m"><static>%s</static><link name="l"><collision '
+            'name="c"><geometry><mesh><uri>%s</uri></mesh></geometry></collision></link></model>'
+            '</sdf>' % ("true" if static else "false", path))
+
+
+def cube_obj(tmp_path):
+    path = tmp_path / "cube.obj"
+    corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    faces = [(1, 2, 4), (1, 4, 3), (5, 7, 8), (5, 8, 6), (1, 5, 6), (1, 6, 2), (3, 4, 8),
+             (3, 8, 7), (1, 3, 7), (1, 7, 5), (2, 6, 8), (2, 8, 4)]
+    path.write_text("".join("v %d %d %d\n" % c for c in corners)
+                    + "".join("f %d %d %d\n" % f for f in faces))
+    return str(path)
+
+
+def test_a_spawn_within_the_budgets_is_prepared_with_its_digest():
+    request = spawn_request.prepare_spawn("crate", BOX)
+    assert request.world is not None and len(request.digest) == 64
+    assert spawn_request.prepare_spawn("p", polyline_sdf(256)).world is not None
+
+
+def test_a_polyline_of_too_many_points_is_refused_before_anything_is_built():
+    with pytest.raises(RequestError) as err:
+        spawn_request.prepare_spawn("p", polyline_sdf(257))
+    assert "polyline points: 257, more than the 256 one spawn may build" in str(err.value)
+
+
+def test_too_many_shapes_are_refused(monkeypatch):
+    monkeypatch.setattr(spawn_request, "MAX_SPAWN_SHAPES", 10)
+    with pytest.raises(RequestError, match="shapes .*: 11, more than the 10"):
+        spawn_request.prepare_spawn("p", polyline_sdf(13))     # counted as 13 - 2 triangles
+    links = "".join('<link name="l%d"><collision><geometry><sphere radius="0.1"/></geometry>'
+                    '</collision></link>' % k for k in range(11))
+    joints = "".join('<joint name="j%d" type="fixed"><parent link="l0"/><child link="l%d"/>'
+                     '</joint>' % (k, k) for k in range(1, 11))
+    with pytest.raises(RequestError, match="shapes .*: 11, more than the 10"):
+        spawn_request.prepare_spawn("u", '<robot name="r">%s%s</robot>' % (links, joints))
+
+
+def test_mesh_budgets_are_checked_on_the_files_read(tmp_path, monkeypatch):
+    path = cube_obj(tmp_path)
+    assert spawn_request.prepare_spawn("m", mesh_sdf(path, static=False)).world is not None
+    monkeypatch.setattr(spawn_request, "MAX_MOVABLE_MESH_VERTICES", 7)
+    with pytest.raises(RequestError, match="vertices of a movable mesh: 8, more than the 7"):
+        spawn_request.prepare_spawn("m", mesh_sdf(path, static=False))
+    spawn_request.prepare_spawn("m", mesh_sdf(path, static=True))     # a static one: triangles
+    monkeypatch.setattr(spawn_request, "MAX_SPAWN_TRIANGLES", 11)
+    with pytest.raises(RequestError, match="mesh triangles: 12, more than the 11"):
+        spawn_request.prepare_spawn("m", mesh_sdf(path, static=True))
+
+
+def test_reading_that_takes_too_long_is_refused():
+    with pytest.raises(RequestError, match="took more than 0 s; nothing was spawned"):
+        spawn_request.prepare_spawn("crate", BOX, seconds=0.0)

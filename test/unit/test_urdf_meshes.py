@@ -346,3 +346,19 @@ def test_a_bad_mesh_refuses_the_spawn_with_one_line(sims, tmp_path, kind, edit, 
     assert message.startswith("SpawnModel: Failure - ") and words in message, message
     assert "\n" not in message and "link 'base_link' <mesh>: " in message
     assert empty.models.names() == before and "bad" not in empty.robots
+
+
+def test_converted_files_are_kept_for_the_pairs_used_last(tmp_path, monkeypatch):
+    """At most MAX_CONVERTED (file, scale) pairs keep their files; an older one's files are
+    removed, and written again when it comes back."""
+    import os
+    from tutorial_turtlebot.sim import urdf_meshes
+    monkeypatch.setattr(urdf_meshes, "MAX_CONVERTED", 2)
+    obj = tmp_path / "t.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    hulls = [urdf_meshes.hull_file(str(obj), (s, s, s)) for s in (1.0, 2.0, 3.0)]
+    assert not os.path.exists(hulls[0]) and all(os.path.exists(h) for h in hulls[1:])
+    again = urdf_meshes.hull_file(str(obj), (1.0, 1.0, 1.0))
+    assert os.path.exists(again) and not os.path.exists(hulls[1])
+    parts = [urdf_meshes.visual_parts(str(obj), (s, s, s)) for s in (1.0, 2.0, 3.0)]
+    assert not os.path.exists(parts[0][0][0]) and os.path.exists(parts[2][0][0])

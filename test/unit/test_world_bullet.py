@@ -152,3 +152,32 @@ def test_a_visual_without_collision_is_seen_but_not_hit(tmp_path, client):
     assert cast(client, (10.0, -3.0, 0.5), (10.0, 3.0, 0.5))[0] == -1
     assert pybullet.getVisualShapeData(ghost, physicsClientId=client)[0][7] == pytest.approx(
         (0.7, 0.7, 0.7, 1.0))
+
+
+def test_a_static_mesh_beyond_one_pybullet_shape_is_built_in_chunks(tmp_path, client):
+    """pybullet takes at most 131,072 vertices in one concave shape (beyond: a SystemError):
+    a 2 x 1 m tiled floor of 2 * 300 * 150 = 90,000 triangles becomes three chunks, and a ray
+    meets it at its top everywhere, first chunk and last alike."""
+    from tutorial_turtlebot.sim.world_bullet import TRIMESH_CHUNK
+    nx, ny = 300, 150
+    xs, ys = np.meshgrid(np.linspace(0.0, 2.0, nx + 1), np.linspace(0.0, 1.0, ny + 1))
+    vertices = np.stack([xs.ravel(), ys.ravel(), np.full(xs.size, 0.3)], axis=1)
+    index = np.arange(xs.size).reshape(ny + 1, nx + 1)
+    a, b = index[:-1, :-1].ravel(), index[:-1, 1:].ravel()
+    c, d = index[1:, :-1].ravel(), index[1:, 1:].ravel()
+    faces = np.concatenate([np.stack([a, b, d], 1), np.stack([a, d, c], 1)]) + 1
+    assert len(faces) > 2 * TRIMESH_CHUNK
+    obj = tmp_path / "floor.obj"
+    obj.write_text("".join("v %.4f %.4f %.4f\n" % tuple(v) for v in vertices)
+                   + "".join("f %d %d %d\n" % tuple(f) for f in faces))
+    world = tmp_path / "floor.world"
+    world.write_text(
+        '<sdf version="1.6"><world name="f"><model name="floor"><static>true</static><link '
+        'name="l"><collision name="c"><geometry><mesh><uri>%s</uri></mesh></geometry>'
+        '</collision></link></model></world></sdf>' % obj)
+    bodies = build_world(load_world(str(world)), client)
+    floor = bodies["floor::l::c"]
+    assert pybullet.getNumJoints(floor, physicsClientId=client) == 2     # 3 chunks: base + 2
+    for x, y in ((0.05, 0.05), (1.0, 0.5), (1.95, 0.95)):
+        body, distance = cast(client, (x, y, 1.0), (x, y, 0.0))
+        assert body == floor and distance == pytest.approx(0.7, abs=1e-3)

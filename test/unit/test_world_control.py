@@ -10,7 +10,7 @@ from tutorial_turtlebot.sim.world_control import RequestError
 from tutorial_turtlebot.sim.world_lights import read_lights
 from tutorial_turtlebot.sim.urdf_file import read_urdf, read_urdf_text
 
-from unit_helpers import CUBE, ROBOT, WHEEL, at, run
+from unit_helpers import CUBE, ROBOT, WHEEL, at, box_sdf, run
 
 BURGER_GEOMS = ["base_footprint_fixed_joint_lump__base_link_collision",
                 "base_footprint_fixed_joint_lump__caster_back_link_collision_1",
@@ -258,3 +258,26 @@ def test_lights_of_an_included_sun(tmp_path, monkeypatch):
     assert lights["sun"].attenuation_linear == 1.0          # SDF's default
     assert lights["lamp"].pose[0] == (1.0, 2.0, 3.0)
     assert read_lights(str(tmp_path / "missing.world")) == {}
+
+
+# --- deleted models' bodies: parked for reuse, a bounded number of them ----------------------------
+
+def test_parked_bodies_are_bounded_and_the_newest_reused(empty):
+    """Spawning and deleting 100 boxes of distinct sizes leaves at most MAX_PARKED_BODIES bodies
+    waiting (each costs every step); the last text deleted is built again from its parked body."""
+    from tutorial_turtlebot.sim.bullet import pybullet
+    from tutorial_turtlebot.sim.world_bullet import MAX_PARKED_BODIES, body_pool
+    sim, wc = empty
+    cid = sim.physics.client
+    before = pybullet.getNumBodies(physicsClientId=cid)
+    for k in range(100):
+        wc.spawn("box%d" % k, box_sdf(size=0.1 + k * 1e-3), at(3.0, 3.0, 0.5))
+        wc.delete("box%d" % k)
+    pool = body_pool(sim.physics)
+    assert pool.parked_bodies == MAX_PARKED_BODIES
+    assert pybullet.getNumBodies(physicsClientId=cid) == before + MAX_PARKED_BODIES
+    wc.spawn("again", box_sdf(size=0.1 + 99e-3), at(3.0, 3.0, 0.5))   # the newest text
+    assert pool.parked_bodies == MAX_PARKED_BODIES - 1
+    assert pybullet.getNumBodies(physicsClientId=cid) == before + MAX_PARKED_BODIES
+    wc.spawn("first", box_sdf(size=0.1), at(-3.0, 3.0, 0.5))            # removed long ago
+    assert pybullet.getNumBodies(physicsClientId=cid) == before + MAX_PARKED_BODIES + 1

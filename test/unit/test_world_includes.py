@@ -97,10 +97,32 @@ def test_ground_plane_and_sun_need_no_model_path(tmp_path, monkeypatch):
     assert plane.kind == "plane" and plane.size == (100.0, 100.0) and plane.static
 
 
-def test_a_missing_include_is_one_line_naming_the_uri_and_the_search(tmp_path, models):
-    message = fault(world_file(tmp_path, '<include><uri>model://cafe_table</uri></include>'))
-    assert "test.world:4: <include>: model://cafe_table not found: searched" in message
+def test_a_missing_include_is_one_warning_naming_the_uri_and_the_search(tmp_path, models):
+    """Gazebo (sdformat) skips an include it cannot find: the rest of the world loads."""
+    model_folder(models, "crate", BOX)
+    world = load_world(world_file(tmp_path, '<include><uri>model://cafe_table</uri></include>'
+                                            '<include><uri>model://crate</uri></include>'))
+    assert world.models == ("crate",)
+    [message] = world.warnings
+    assert "\n" not in message
+    assert "test.world:4: <include> left out: model://cafe_table not found: searched" in message
     assert "GAZEBO_MODEL_PATH (%s)" % models in message
+    assert "https://github.com/osrf/gazebo_models" in message
+    assert "add its folder to GAZEBO_MODEL_PATH" in message
+
+
+def test_an_include_with_the_name_in_another_case_says_so(tmp_path, models):
+    model_folder(models, "mailbox", BOX)
+    world = load_world(world_file(tmp_path, '<include><uri>model://Mailbox</uri></include>'))
+    assert world.models == ()
+    [message] = world.warnings
+    assert "%s exists, whose name differs only in letter case" % (models / "mailbox") in message
+
+
+def test_a_model_folder_without_model_config_is_still_refused(tmp_path, models):
+    (models / "empty").mkdir(parents=True)
+    message = fault(world_file(tmp_path, '<include><uri>model://empty</uri></include>'))
+    assert "has no model.config" in message
 
 
 def test_an_include_of_itself_is_refused(tmp_path, models):

@@ -13,6 +13,7 @@ import rospy
 from dynamic_reconfigure.server import Server
 
 from . import physics_config
+from .loop_requests import NotAnswered
 from ..sim.physics_properties import PhysicsProperties, updated
 from ..sim.world_control import RequestError
 
@@ -50,7 +51,10 @@ class PhysicsReconfigure:
                     return None
                 except RequestError as err:
                     return str(err)
-            problem = self.api.run_in_loop(apply)
+            try:
+                problem = self.api.run_in_loop(apply)
+            except NotAnswered:
+                problem = "the simulation did not answer; the physics are as they were"
             if problem:
                 rospy.logwarn("dynamic_reconfigure: %s", problem)
         config.update(as_config(self.api.control.physics_properties()))

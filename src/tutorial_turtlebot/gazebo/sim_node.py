@@ -45,10 +45,8 @@ Parameters (private):
 """
 import math
 import os
-import queue
 import signal
 import sys
-import threading
 import time
 
 import rosgraph.names
@@ -60,6 +58,7 @@ from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
 from . import tcpros_guard, unreachable_publishers
+from .loop_requests import ANSWER_TIMEOUT, LoopRequests, NotAnswered
 from .master_watch import MasterWatch
 from .world_api import WorldApi
 from ..errors import UserError
@@ -173,8 +172,7 @@ class SimNode:
         self._next_clock_wall = -math.inf
         self.clock_packed = PackedClock()
         self.part_times_path = part_times.report_path()
-        self._requests = queue.Queue()
-        self._wake = threading.Event()
+        self.requests = LoopRequests()   # what callbacks hand to the loop, and its wake-up
         self.stop_requested = False  # set by the SIGINT/SIGTERM handler of main()
         # Every message is written from this loop without a thread switch, and a subscriber
         # that stops reading loses old messages instead of stalling the simulation.
@@ -272,12 +270,20 @@ class SimNode:
     # --- input -----------------------------------------------------------------------------------
 
     def _service_handler(self, name, action):
+        """An Empty service (reset, pause) whose action runs in the loop. A failure is a
+        service error that says what happened: the loop did not start it in time (then it never
+        runs), or the action raised (named in one line)."""
         def handle(_request):
-            done = threading.Event()
-            self._requests.put((action, done))
-            self._wake.set()
-            if not done.wait(10.0):
-                rospy.logwarn("%s: the simulation loop did not answer within 10 s", name)
+            try:
+                self.requests.call(action, ANSWER_TIMEOUT)
+            except NotAnswered:
+                raise rospy.ServiceException(
+                    "%s: the simulation loop did not answer within %g s; nothing was done"
+                    % (name, ANSWER_TIMEOUT)) from None
+            except Exception as err:  # noqa: BLE001 - named to the caller, the loop goes on
+                rospy.logerr("%s: internal error: %s", name, _one_line(err))
+                raise rospy.ServiceException("%s: internal error: %s"
+                                             % (name, _one_line(err))) from None
             return EmptyResponse()
         return handle
 
@@ -290,16 +296,16 @@ class SimNode:
 
     def _handle_requests(self) -> None:
         """Run the requests queued by service and topic callbacks, between two steps."""
-        while not self._requests.empty():
-            action, done = self._requests.get()
-            before = self.sim.time_ns
-            action()
-            done.set()
-            if self.sim.time_ns != before:  # reset_simulation: everyone sees the new time now
-                self.backlog.send_due()      # after what was made before it
+        before = [self.sim.time_ns]
+
+        def after_each():
+            if self.sim.time_ns != before[0]:  # reset_simulation: everyone sees the new time now
+                self.backlog.send_due()          # after what was made before it
                 self.pacer.restart(self.sim.time)
                 self._next_clock_wall = -math.inf
                 self._publish_due([(None, "clock")])
+                before[0] = self.sim.time_ns
+        self.requests.run_pending(after_each)
 
     # --- loop ------------------------------------------------------------------------------------
 
@@ -324,7 +330,7 @@ class SimNode:
                 if self.part_times_path and time.monotonic() >= next_report:
                     next_report = time.monotonic() + 1.0
                     self._report_part_times()
-            if not self._requests.empty():
+            if self.requests:
                 backlog.send_due()   # a caller sees every message made before its answer
                 self._handle_requests()
             if backlog:
@@ -337,8 +343,8 @@ class SimNode:
                 backlog.send_due(time.monotonic())
             if self.paused:
                 backlog.send_due()
-                self._wake.wait(0.1)
-                self._wake.clear()
+                self.requests.wake.wait(0.1)
+                self.requests.wake.clear()
                 pacer.restart(sim.time)
                 continue
             times.switch("physics")
@@ -385,7 +391,7 @@ class SimNode:
                 return
             if self.stop_requested:
                 return
-            self._wake.clear()          # before the queue is read: a later request wakes again
+            self.requests.wake.clear()  # before the queue is read: a later request wakes again
             self._handle_requests()
             if self.paused:
                 return
@@ -399,7 +405,7 @@ class SimNode:
         return TIMES.run("idle", self._sleep, wall_time)
 
     def _sleep(self, wall_time: float) -> bool:
-        wake = self._wake
+        wake = self.requests.wake
         while True:
             delay = wall_time - time.monotonic()
             if delay < Pacer.SHORTEST_SLEEP:
@@ -490,6 +496,8 @@ def main() -> None:
     except UserError as err:
         rospy.logfatal("gazebo: %s", err)
         sys.exit(2)
+    for warning in sim.world.warnings:      # what the world file names but Gazebo would skip
+        rospy.logwarn("gazebo: %s", warning)
     if sim.robot is not None:
         rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
                       config.model, config.world, sim.spawn[0], sim.spawn[1], sim.spawn[3],

@@ -52,11 +52,12 @@ from gazebo_msgs.srv import (ApplyBodyWrench, ApplyBodyWrenchResponse, ApplyJoin
                              SetPhysicsPropertiesResponse, SpawnModel, SpawnModelResponse)
 from geometry_msgs.msg import Pose, Twist
 
+from .loop_requests import ANSWER_TIMEOUT, NotAnswered
 from .part_times import TIMES
 from ..sim.physics_properties import OdeConfig, PhysicsProperties
+from ..sim.spawn_request import prepare_spawn
 from ..sim.world_control import RequestError, WorldControl
 
-ANSWER_TIMEOUT = 10.0    # wall s a service waits for the loop before it gives up
 METRICS_PERIOD = 1.0     # wall s between two ~performance_metrics
 JOINT_TYPES = {"revolute": GetJointPropertiesResponse.REVOLUTE,
                "continuous": GetJointPropertiesResponse.CONTINUOUS,
@@ -64,6 +65,19 @@ JOINT_TYPES = {"revolute": GetJointPropertiesResponse.REVOLUTE,
                "fixed": GetJointPropertiesResponse.FIXED,
                "ball": GetJointPropertiesResponse.BALL,
                "universal": GetJointPropertiesResponse.UNIVERSAL}
+
+
+def failure(srv_type, text: str):
+    """The response of ``srv_type`` that says ``text`` failed: success False and the text as its
+    status_message, as every gazebo_msgs response with those fields does; a service error
+    where the response has no such fields."""
+    response = srv_type._response_class()
+    if not hasattr(response, "success"):
+        raise rospy.ServiceException(text)
+    response.success = False
+    if hasattr(response, "status_message"):
+        response.status_message = text
+    return response
 
 
 def pose_in(msg):
@@ -150,7 +164,8 @@ class WorldApi:
                  self._set_model_configuration),
                 ("get_light_properties", GetLightProperties, self._get_light_properties),
                 ("set_light_properties", SetLightProperties, self._set_light_properties)):
-            rospy.Service("~" + name, srv_type, self._in_loop(name, handler))
+            wrap = self._answered if name.startswith("spawn_") else self._in_loop
+            rospy.Service("~" + name, srv_type, wrap(name, srv_type, handler))
         self.metrics = PerformanceMeter(self)
         self.reconfigure = None
         try:
@@ -163,32 +178,32 @@ class WorldApi:
     # --- running in the simulation loop ----------------------------------------------------------
 
     def run_in_loop(self, action):
-        """Run ``action()`` in the simulation loop between two steps; return what it returns
-        (None if the loop did not answer within ANSWER_TIMEOUT)."""
-        result = []
-        done = threading.Event()
+        """Run ``action()`` in the simulation loop between two steps; what it returns, or what
+        it raised, raised here; loop_requests.NotAnswered if the loop did not start it within
+        ANSWER_TIMEOUT (then it never runs)."""
+        return self.node.requests.call(action, ANSWER_TIMEOUT)
 
-        def run():
-            result.append(action())
-        self.node._requests.put((run, done))
-        self.node._wake.set()
-        if not done.wait(ANSWER_TIMEOUT):
-            return None
-        return result[0] if result else None
+    def _in_loop(self, name, srv_type, handler):
+        """A service callback that runs ``handler(request)`` in the loop (_answered)."""
+        return self._answered(name, srv_type,
+                              lambda request: self.run_in_loop(lambda: handler(request)))
 
-    def _in_loop(self, name, handler):
-        """A service callback that runs ``handler(request)`` in the loop, never raising there."""
+    def _answered(self, name, srv_type, run):
+        """A service callback that returns ``run(request)``. Its failures are answered, never
+        hidden: success False (or, for a response without it, a service error) with one line,
+        either that the loop did not start it in time (nothing was done) or the internal error
+        raised."""
         def call(request):
-            def action():
-                try:
-                    return handler(request)
-                except Exception as err:  # noqa: BLE001 - a request must never stop the loop
-                    rospy.logerr("%s: %s: %s", name, type(err).__name__, err)
-                    return None
-            response = self.run_in_loop(action)
-            if response is None:
-                raise rospy.ServiceException("%s: the simulation did not answer" % name)
-            return response
+            try:
+                return run(request)
+            except NotAnswered:
+                problem = ("the simulation did not answer within %g s; nothing was done"
+                           % ANSWER_TIMEOUT)
+            except Exception as err:  # noqa: BLE001 - a request must never stop the node
+                problem = "internal error: %s: %s" % (type(err).__name__,
+                                                      " ".join(str(err).split())[:300])
+                rospy.logerr("%s: %s", name, problem)
+            return failure(srv_type, "%s: %s" % (name, problem))
         return call
 
     def _enqueue(self, action):
@@ -200,8 +215,7 @@ class WorldApi:
                 rospy.logwarn_throttle(5.0, str(err))
             except Exception as err:  # noqa: BLE001
                 rospy.logerr("%s: %s", type(err).__name__, err)
-        self.node._requests.put((run, threading.Event()))
-        self.node._wake.set()
+        self.node.requests.put(run)
 
     # --- publishing --------------------------------------------------------------------------
 
@@ -292,19 +306,32 @@ class WorldApi:
         return resp
 
     def _spawner(self, kind):
+        """spawn_sdf_model / spawn_urdf_model, in the service's own thread: the names and the
+        pose are checked in the loop, the text and its files are read and checked here (while
+        physics and the other requests go on), then the loop builds it."""
         def spawn(req):
+            name, namespace = req.model_name, req.robot_namespace
             try:
-                self.control.spawn(req.model_name, req.model_xml, pose_in(req.initial_pose),
-                                   req.reference_frame, kind, req.robot_namespace)
+                pose = self.run_in_loop(lambda: self.control.spawn_pose(
+                    name, pose_in(req.initial_pose), req.reference_frame, namespace))
+                prepared = prepare_spawn(name, req.model_xml, pose, kind)
+                self.run_in_loop(lambda: self._build(prepared, pose, namespace))
             except RequestError as err:
                 return SpawnModelResponse(False, str(err))
-            try:
-                self.node.sync_robots()  # a robot URDF: its plugins' topics
-            except RequestError as err:  # it is out of the world again
-                rospy.logerr("spawn_%s_model: %s", kind, err)
-                return SpawnModelResponse(False, "SpawnModel: Failure - %s" % err)
+            for warning in prepared.world.warnings if prepared.world is not None else ():
+                rospy.logwarn("spawn %s: %s", name, warning)   # what Gazebo would skip too
             return SpawnModelResponse(True, "SpawnModel: Successfully spawned entity")
         return spawn
+
+    def _build(self, prepared, pose, namespace) -> None:
+        """In the loop: build a prepared spawn, and a robot's topics (if they cannot be made,
+        it is out of the world again)."""
+        self.control.spawn_prepared(prepared, pose, namespace)
+        try:
+            self.node.sync_robots()  # a robot URDF: its plugins' topics
+        except RequestError as err:
+            rospy.logerr("spawn: %s", err)
+            raise RequestError("SpawnModel: Failure - %s" % err) from None
 
     def _delete_model(self, req):
         try:

@@ -15,9 +15,14 @@ ROS plugins do.
   that is no version ("-1", "1.x"). model.config and the SDF file must be regular files
   (file_read), model.config at most file_read.MAX_MODEL_CONFIG_BYTES.
 - ``package://PKG/rest`` is PKG's folder from rospkg, else a model folder called PKG.
-- ``file://path`` and a bare path are absolute, or relative to the folder of the file that
-  names them.
-Every failure is an ``AssetError`` of one line naming the URI and where it was looked for.
+- ``file://path`` and a bare path are absolute, or relative. A relative one is looked for as
+  Gazebo looks: in the folder of the file that names it (the model's folder), then the working
+  directory, then each folder of ``GAZEBO_RESOURCE_PATH`` (colon-separated), then the model
+  path above; first match wins.
+Every failure is an ``AssetError`` of one line naming the URI and where it was looked for; a
+file or model that is not there is an ``AssetNotFound``, which names a file whose name differs
+only in letter case (Gazebo on Linux does not take it either) and, for ``model://``, where
+Gazebo's online models can be had.
 """
 import os
 from typing import Callable, Iterable, List, Optional, Sequence, Tuple
@@ -33,6 +38,50 @@ MAX_SDF_VERSION = (1, 7)      # the newest SDF version Gazebo 11 (libsdformat 9)
 
 class AssetError(WorldError):
     """A file named by a URI cannot be found or read; one line naming the URI and the search."""
+
+
+class AssetNotFound(AssetError):
+    """The file or model folder a URI names is in none of the places searched (a world loads
+    without it, as in Gazebo: world_sdf makes it a warning)."""
+
+
+# Gazebo 11 fetches a model:// it cannot find from its online model database; those models
+# (mailbox, cafe_table, ...) are the gazebo_models repository. Said in the not-found line.
+MODEL_DATABASE_HINT = ("Gazebo's online models (mailbox, cafe_table ...) are in "
+                       "https://github.com/osrf/gazebo_models: download it and add its folder "
+                       "to GAZEBO_MODEL_PATH")
+
+
+def case_mismatch(path: str) -> Optional[str]:
+    """The existing path that differs from the missing ``path`` only in letter case (the first
+    in sorted order at each level); None if there is none."""
+    head, missing = os.path.normpath(path), []
+    while not os.path.lexists(head):
+        head, tail = os.path.split(head)
+        if not tail:
+            return None
+        missing.append(tail)
+    for part in reversed(missing):
+        try:
+            names = sorted(n for n in os.listdir(head) if n.lower() == part.lower())
+        except OSError:
+            return None
+        if not names:
+            return None
+        head = os.path.join(head, names[0])
+    return head if missing else None
+
+
+def _case_note(candidates: Iterable[str]) -> str:
+    """"; X exists, whose name differs only in letter case (...)" for the first of the missing
+    ``candidates`` that has such a twin; "" if none has."""
+    for candidate in candidates:
+        twin = case_mismatch(candidate)
+        if twin is not None:
+            return ("; %s exists, whose name differs only in letter case (file names are "
+                    "case-sensitive, as in Gazebo on Linux: fix the URI or the file name)"
+                    % twin)
+    return ""
 
 
 def _ros_exported_model_paths() -> List[str]:
@@ -88,14 +137,23 @@ class ModelPath:
                 parts.append("%s (%s)" % (label, ":".join(folders) or "unset"))
         return ", ".join(parts)
 
-    def find(self, relative: str) -> Optional[str]:
-        """The first existing ``folder/relative`` over the model path; None if there is none."""
+    def folders(self) -> Iterable[str]:
+        """Every folder of the model path, in search order (the ROS exports read last, lazily)."""
         for _label, folders in self._groups():
             for folder in folders:
-                candidate = os.path.join(os.path.expanduser(folder), relative)
-                if os.path.exists(candidate):
-                    return candidate
+                yield os.path.expanduser(folder)
+
+    def find(self, relative: str) -> Optional[str]:
+        """The first existing ``folder/relative`` over the model path; None if there is none."""
+        for folder in self.folders():
+            candidate = os.path.join(folder, relative)
+            if os.path.exists(candidate):
+                return candidate
         return None
+
+    def resource_folders(self) -> List[str]:
+        """The folders of ``GAZEBO_RESOURCE_PATH`` (colon-separated), in order."""
+        return [p for p in self.environ.get("GAZEBO_RESOURCE_PATH", "").split(":") if p]
 
 
 _DEFAULT = ModelPath()
@@ -124,7 +182,9 @@ def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None)
     if scheme == "model":
         found = model_path.find(rest.strip("/"))
         if found is None:
-            raise AssetError("%s not found: searched %s" % (uri, model_path.describe()))
+            note = _case_note(os.path.join(f, rest.strip("/")) for f in model_path.folders())
+            raise AssetNotFound("%s not found: searched %s%s; %s"
+                                % (uri, model_path.describe(), note, MODEL_DATABASE_HINT))
         return found
     if scheme == "package":
         package, _, inner = rest.partition("/")
@@ -132,18 +192,41 @@ def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None)
         if root is None:
             found = model_path.find(rest.strip("/"))
             if found is None:
-                raise AssetError("%s: no ROS package %r on ROS_PACKAGE_PATH (%s) and no model "
+                raise AssetNotFound("%s: no ROS package %r on ROS_PACKAGE_PATH (%s) and no model "
                                  "folder of that name in %s"
                                  % (uri, package, os.environ.get("ROS_PACKAGE_PATH", "unset"),
                                     model_path.describe()))
             return found
         path = os.path.join(root, inner)
     else:
-        path = os.path.join(base_dir, os.path.expanduser(rest))
+        rest = os.path.expanduser(rest)
+        if not os.path.isabs(rest):
+            return _relative(uri, rest, base_dir, model_path)
+        path = rest
     path = os.path.normpath(path)
     if not os.path.exists(path):
-        raise AssetError("%s not found (%s does not exist)" % (uri, path))
+        raise AssetNotFound("%s not found (%s does not exist)%s"
+                            % (uri, path, _case_note([path])))
     return path
+
+
+def _relative(uri: str, rest: str, base_dir: str, model_path: ModelPath) -> str:
+    """The first existing ``folder/rest`` in Gazebo's order: the naming file's folder, the
+    working directory, GAZEBO_RESOURCE_PATH, the model path. AssetNotFound naming them all."""
+    first = [os.path.abspath(base_dir), os.getcwd()] + model_path.resource_folders()
+    tried = []
+    for folder in first + [None]:
+        folders = [folder] if folder is not None else model_path.folders()
+        for each in folders:
+            candidate = os.path.normpath(os.path.join(each, rest))
+            if os.path.exists(candidate):
+                return candidate
+            tried.append(candidate)
+    resource = ":".join(model_path.resource_folders()) or "unset"
+    raise AssetNotFound("%s not found: searched the folder of the file naming it (%s), the "
+                        "working directory (%s), GAZEBO_RESOURCE_PATH (%s), %s%s"
+                        % (uri, os.path.abspath(base_dir), os.getcwd(), resource,
+                           model_path.describe(), _case_note(tried)))
 
 
 _ROSPACK = {}   # ROS_PACKAGE_PATH -> its rospkg.RosPack (each new one scans the whole path)

@@ -57,9 +57,12 @@ def as_real_driver(laser: LaserConfig) -> LaserConfig:
 
 
 def ray_directions(cfg: LaserConfig) -> np.ndarray:
-    """Unit vectors (samples x 3) of each ray in the scan frame, index 0 straight ahead."""
+    """Unit vectors (samples x 3) of each ray in the scan frame, index 0 straight ahead.
+    Python's math (the C library's) makes them, not numpy's: numpy's vectorised sin and cos
+    differ in the last bit between its versions and processors, and a ray that grazes an edge
+    then lands elsewhere."""
     angles = cfg.angle_min + cfg.angle_increment * np.arange(cfg.samples)
-    return np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], axis=1)
+    return np.array([(math.cos(a), math.sin(a), 0.0) for a in angles.tolist()])
 
 
 def ranges_from_distances(cfg: LaserConfig, distances: np.ndarray,

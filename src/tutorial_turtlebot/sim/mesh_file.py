@@ -35,6 +35,7 @@ import os
 import struct
 import tempfile
 import warnings
+from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Dict, List, Optional, Sequence, Tuple
 
@@ -51,6 +52,13 @@ SUFFIXES = tuple(_FORMATS)   # the file name endings read (any letter case)
 
 class MeshError(UserError):
     """A mesh file that cannot be used; ``str(err)`` is one line naming the file and the problem."""
+
+
+class MeshUnreadable(MeshError):
+    """A Collada file whose content cannot be read (not XML, not Collada, or no triangles in
+    it). Gazebo then loads the link without that geometry; world_sdf does the same, with this
+    line as a warning. Files that are refused (not regular, too big, non-finite or far vertices)
+    stay MeshError."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,8 +89,35 @@ class Mesh:
         return used.min(axis=0), used.max(axis=0)
 
 
-_files: Dict[tuple, Mesh] = {}   # (real path, mtime, size) -> the file's mesh, unscaled
-_cache: Dict[tuple, Mesh] = {}   # the same + (scale,) -> the mesh load_mesh returns
+# The meshes read, least recently used first: (real path, mtime, size) -> the file's mesh,
+# unscaled, and the same + (scale,) -> the mesh load_mesh returns. At most MAX_CACHED_BYTES of
+# their arrays are kept: a world's meshes are read once, a spawned one's again if it comes back
+# after many others.
+MAX_CACHED_BYTES = 256 * 1024 * 1024
+_meshes: "OrderedDict[tuple, Mesh]" = OrderedDict()
+_cached_bytes = 0
+
+
+def _nbytes(mesh: Mesh) -> int:
+    return mesh.vertices.nbytes + sum(part.faces.nbytes for part in mesh.parts)
+
+
+def _cached(key: tuple) -> Optional[Mesh]:
+    mesh = _meshes.get(key)
+    if mesh is not None:
+        _meshes.move_to_end(key)
+    return mesh
+
+
+def _keep(key: tuple, mesh: Mesh) -> Mesh:
+    """Keep ``mesh`` as the newest; forget the oldest beyond MAX_CACHED_BYTES (not this one)."""
+    global _cached_bytes
+    _meshes[key] = mesh
+    _cached_bytes += _nbytes(mesh)
+    while _cached_bytes > MAX_CACHED_BYTES and len(_meshes) > 1:
+        _, gone = _meshes.popitem(last=False)
+        _cached_bytes -= _nbytes(gone)
+    return mesh
 
 
 def load_mesh(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> Mesh:
@@ -106,17 +141,18 @@ def load_mesh(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> Mesh:
                         % (path, suffix, ", ".join(SUFFIXES)))
     stat = os.stat(path)
     file_key = (os.path.realpath(path), stat.st_mtime_ns, stat.st_size)
-    if file_key + (factors,) not in _cache:
-        if file_key not in _files:
-            _files[file_key] = _read(path, suffix)
-        _cache[file_key + (factors,)] = _scaled(_files[file_key], factors)
-    return _cache[file_key + (factors,)]
+    scaled = _cached(file_key + (factors,))
+    if scaled is not None:
+        return scaled
+    unscaled = _cached(file_key) or _keep(file_key, _read(path, suffix))
+    return _keep(file_key + (factors,), _scaled(unscaled, factors))
 
 
 def cache_clear() -> None:
     """Forget every mesh read (for tests)."""
-    _files.clear()
-    _cache.clear()
+    global _cached_bytes
+    _meshes.clear()
+    _cached_bytes = 0
 
 
 def _read(path: str, suffix: str) -> Mesh:
@@ -131,15 +167,19 @@ def _read(path: str, suffix: str) -> Mesh:
             else:
                 vertices, parts = _read_trimesh(data, suffix[1:], side_files)
     except Exception as err:   # trimesh, pycollada, lxml, numpy: any failure is a bad file
+        if side_files.refused is not None:
+            raise MeshError(side_files.refused) from None
         text = " ".join(str(err).split()) or type(err).__name__
-        raise MeshError("%s: cannot read this %s file: %s"
-                        % (path, _FORMATS[suffix], text[:200])) from None
+        unreadable = MeshUnreadable if suffix == ".dae" else MeshError
+        raise unreadable("%s: cannot read this %s file: %s"
+                         % (path, _FORMATS[suffix], text[:200])) from None
     if side_files.refused is not None:
         raise MeshError(side_files.refused)
     parts = [(np.asarray(f, dtype=np.int64).reshape(-1, 3), rgba) for f, rgba in parts]
     parts = [(f, rgba) for f, rgba in parts if len(f)]
     if not parts:
-        raise MeshError("%s: the file holds no triangles" % path)
+        raise (MeshUnreadable if suffix == ".dae" else MeshError)(
+            "%s: the file holds no triangles" % path)
     vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
     if not np.all(np.isfinite(vertices)):
         raise MeshError("%s: the file has vertex coordinates that are not numbers" % path)
@@ -153,7 +193,8 @@ def _read(path: str, suffix: str) -> Mesh:
              for f, rgba in parts]
     parts = [(f, rgba) for f, rgba in parts if len(f)]
     if not parts:
-        raise MeshError("%s: the file holds no triangles (only degenerate ones)" % path)
+        raise (MeshUnreadable if suffix == ".dae" else MeshError)(
+            "%s: the file holds no triangles (only degenerate ones)" % path)
     return Mesh(path, vertices, tuple(MeshPart(f, rgba) for f, rgba in _merge_colours(parts)))
 
 
@@ -240,7 +281,7 @@ def _read_collada(data: bytes, side_files: _SideFiles):
     import collada
     if data[:4] == b"PK\x03\x04":
         raise ValueError("it is a zip archive (a .zae); Gazebo reads .dae files of plain XML")
-    doc = collada.Collada(io.BytesIO(data), aux_file_loader=side_files.read,
+    doc = collada.Collada(io.BytesIO(_without_comments(data)), aux_file_loader=side_files.read,
                           ignore=[collada.common.DaeUnsupportedError,
                                   collada.common.DaeBrokenRefError])
     if doc.scene is not None:
@@ -262,6 +303,25 @@ def _read_collada(data: bytes, side_files: _SideFiles):
             count += len(chunks[-1])
     vertices = np.concatenate(chunks) * unit if chunks else np.zeros((0, 3))
     return vertices, parts
+
+
+def _without_comments(data: bytes) -> bytes:
+    """The XML document ``data`` without its comments and processing instructions, whose text
+    pieces join up again. pycollada reads only an element's text before the first comment (a
+    comment in a <float_array> cuts the numbers short) and takes a comment in a <mesh> for a
+    primitive it cannot read (the mesh then has no triangles); Gazebo's TinyXML reader skips
+    them. A document with a DOCTYPE (entities) or one that does not parse is returned as it
+    is, for pycollada to read or to name its fault."""
+    if (b"<!--" not in data and b"<?" not in data[1:]) or b"<!DOCTYPE" in data:
+        return data
+    from xml.etree import ElementTree
+    parser = ElementTree.XMLParser(
+        target=ElementTree.TreeBuilder(insert_comments=False, insert_pis=False))
+    try:
+        parser.feed(data)
+        return ElementTree.tostring(parser.close())
+    except ElementTree.ParseError:
+        return data
 
 
 def _collada_colour(material) -> Optional[Rgba]:

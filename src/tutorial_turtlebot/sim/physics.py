@@ -8,6 +8,7 @@ centre of mass, so every pose here is converted to and from the root link.
 Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
 import copy
+import hashlib
 import os
 import tempfile
 from typing import Dict, List, Optional, Sequence, Tuple
@@ -169,7 +170,7 @@ class RobotBody:
                 self._bullet_urdf = f.read()
             os.unlink(tmp)
         pool = body_pool(self.physics)   # a deleted robot of the same URDF is reused
-        parked = pool.take(("robot", self._bullet_urdf))
+        parked = pool.take(self._pool_key())
         if parked:
             robot = parked[0]
         else:
@@ -195,6 +196,10 @@ class RobotBody:
                                     activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
                                     physicsClientId=cid)
         return robot
+
+    def _pool_key(self) -> tuple:
+        """The BodyPool key of this robot's body: the digest of the URDF pybullet loaded."""
+        return ("robot", hashlib.sha256(self._bullet_urdf.encode("utf-8")).hexdigest())
 
     def _wheel_indices(self, names: Sequence[str]) -> Tuple[int, ...]:
         cid = self.client
@@ -299,7 +304,7 @@ class RobotBody:
     def remove(self) -> None:
         """Take the robot out of the world (parked for reuse: world_bullet.BodyPool)."""
         pool = body_pool(self.physics)
-        if not pool.park(("robot", self._bullet_urdf), [self.robot]):
+        if not pool.park(self._pool_key(), [self.robot]):
             pybullet.removeBody(self.robot, physicsClientId=self.client)
             pool.forget([self.robot])
         self.physics.give_back_robot_bit(self.collision_bit)

@@ -141,13 +141,18 @@ class SimRobot:
         self.body = RobotBody(physics, description, spawn_pose,
                               (drive.left_joint, drive.right_joint) if drive else (),
                               drive.wheel_torque if drive else 0.0)
-        try:
-            self.camera = (CameraRenderer(physics.client, self.camera_spec,
-                                          use_egl=physics.egl or physics.gui)
-                           if self.camera_spec else None)
-        except Exception:
+        try:   # a robot that cannot be completed leaves no body behind
+            self._set_up(physics, now_ns, seed)
+        except BaseException:
             self.body.remove()
             raise
+
+    def _set_up(self, physics: WorldPhysics, now_ns: int, seed: int) -> None:
+        """Everything of the robot after its body: camera, drive, schedules, rays, state."""
+        drive = self.drive_plugin
+        self.camera = (CameraRenderer(physics.client, self.camera_spec,
+                                      use_egl=physics.egl or physics.gui)
+                       if self.camera_spec else None)
         step_rate = 1.0 / physics.time_step
         separation = drive.wheel_separation if drive else 1.0
         radius = drive.wheel_radius if drive else 1.0

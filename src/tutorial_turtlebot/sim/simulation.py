@@ -19,7 +19,7 @@ from .physics_properties import OdeConfig, PhysicsProperties, bullet_parameters
 from .robot_models import model_limits, turtlebot3_model_of
 from .schedule import RateSchedule, seconds_to_ns, NS_PER_S
 from .sim_robot import ImuState, OdomState, RobotOptions, SimRobot, normalize_namespace
-from .spawn_check import check_spawn, footprint_radius
+from .spawn_check import check_spawn, footprint_radius, resting_height
 from .urdf_file import RobotDescription, read_urdf, urdf_path
 from .world_models import ModelRegistry, RequestError, model_of_urdf_body, models_of_world, \
     robot_model_name
@@ -106,8 +106,11 @@ class Simulation:
         options = config.robot_options()
         if config.spawn_robot:
             description = read_urdf(config.urdf or urdf_path(config.model, bool(config.camera)))
-            check_spawn(self.world, self.spawn[0], self.spawn[1],
-                        footprint_radius(description), z=self.spawn[2])
+            x, y, z, yaw = self.spawn
+            radius = footprint_radius(description)
+            z = resting_height(self.world, x, y, radius, z)   # on a raised floor, if any
+            check_spawn(self.world, x, y, radius, z=z)
+            self.spawn = (x, y, z, yaw)
         # Cameras render through EGL where it works; it must be loaded before any body. An
         # empty world (robots to be spawned) loads it in case one of them has a camera.
         wants_camera = (description is None
@@ -181,10 +184,14 @@ class Simulation:
             raise RequestError("SpawnModel: Failure - %s" % err) from None
         body = robot.body
         collisions = description.collision_names()   # get_model_properties' geom_names
-        model = model_of_urdf_body(name, body.robot, self.physics.client, "robot",
-                                   reset_hook=body.reset_robot,
-                                   remove_hook=lambda: self._forget_robot(name),
-                                   collisions=collisions)
+        try:
+            model = model_of_urdf_body(name, body.robot, self.physics.client, "robot",
+                                       reset_hook=body.reset_robot,
+                                       remove_hook=lambda: self._forget_robot(name),
+                                       collisions=collisions)
+        except BaseException:   # nothing of it stays in the world
+            body.remove()
+            raise
 
         def rebuild():   # a body whose state went NaN: the robot's URDF loaded again
             body.rebuild()

@@ -25,6 +25,9 @@ from .world_sdf import Shape, World
 FLOOR_CLEARANCE = 0.01   # m: shapes entirely below this are floor coverings the robot drives on
 DEFAULT_HEIGHT = 0.2     # m: the top of the robot (burger 0.192, waffle 0.141, above the floor)
 TILTED_SAMPLES = 21      # heights at which a tilted shape is measured
+MAX_STEP = 0.05          # m: a shape whose top is at most this above a robot's base is a floor
+                         # it is put on (resting_height); a TurtleBot3 wheel's radius is 0.033
+MAX_STEPS = 4            # raised floors stacked on each other that resting_height climbs
 
 Point = Tuple[float, float]
 
@@ -46,6 +49,40 @@ def check_spawn(world: World, x: float, y: float, footprint_radius: float, z: fl
     raise WorldError("%s is %.3f m from %s (%s): a robot of footprint radius %.3f m would stand "
                      "in it: choose another x_pos, y_pos"
                      % (where, distance, shape.name, world_file, footprint_radius))
+
+
+def resting_height(world: World, x: float, y: float, footprint_radius: float, z: float = 0.0,
+                   height: float = DEFAULT_HEIGHT) -> float:
+    """The z at which a robot spawned at (x, y, z) stands: ``z``, or the top of a raised floor
+    under it. A shape in the robot's footprint whose top there is at most MAX_STEP above its
+    base is such a floor (a platform, a floor mesh a little above 0): the robot is put on it,
+    as Gazebo's physics would push a robot spawned into it up onto it. Higher shapes stay
+    obstacles for check_spawn."""
+    for _ in range(MAX_STEPS):
+        hit = find_obstacle(world, x, y, footprint_radius, z, height)
+        if hit is None:
+            return z
+        top = _top_near(hit[0], x, y, footprint_radius)
+        if top is None or not z < top <= z + MAX_STEP:
+            return z
+        z = top
+    return z
+
+
+def _top_near(shape: Shape, x: float, y: float, radius: float) -> Optional[float]:
+    """The highest z of ``shape`` within ``radius`` of (x, y) in plan: exact for an upright
+    primitive, whole triangles for a mesh; None for a tilted primitive (not a floor)."""
+    rotation = matrix_from_rpy(*shape.pose[3:])
+    centre = np.array(shape.pose[:3])
+    if shape.kind == "mesh":
+        mesh = load_mesh(shape.mesh, shape.size)
+        triangles = (mesh.vertices @ rotation.T + centre)[mesh.faces]
+        near = _plan_triangle_distances(triangles[:, :, :2], np.array((x, y))) <= radius
+        return float(triangles[near][:, :, 2].max()) if near.any() else None
+    if abs(abs(rotation[2, 2]) - 1.0) > 1e-9:
+        return None
+    low, high = _local_z_range(shape)
+    return float(max(centre[2] + rotation[2, 2] * low, centre[2] + rotation[2, 2] * high))
 
 
 def find_obstacle(world: World, x: float, y: float, footprint_radius: float, z: float = 0.0,

@@ -17,7 +17,10 @@ a DOCTYPE, nesting deeper than xml_reader.MAX_DEPTH), an unknown root, anything 
 world_sdf refuses (a mesh file that cannot be found or is of an unknown kind, a bad mesh scale,
 any number beyond the limits of ``limits``), an initial pose beyond them.
 """
+import hashlib
 import os
+import threading
+import time
 from dataclasses import dataclass
 from typing import Optional
 from xml.etree import ElementTree
@@ -36,6 +39,16 @@ from .xml_reader import Element
 
 MAX_XML_BYTES = 1_000_000
 PREFIX = "SpawnModel: Failure - "
+# What one spawn may cost the loop (it builds the bodies between two steps, while physics,
+# /clock and every other request wait): refused before anything is built.
+MAX_SPAWN_SHAPES = 1000         # collisions and visuals, a polyline's triangles and a mesh's
+                                # colour parts counted one each (the house world holds ~600)
+MAX_POLYLINE_POINTS = 256       # corners of one polyline (cut into triangles, one body each)
+MAX_SPAWN_TRIANGLES = 200_000   # the mesh triangles of one spawn, after their files are read
+                                # (a static one of 180,000 takes the loop 1.2 s to build)
+MAX_MOVABLE_MESH_VERTICES = 100_000  # a movable mesh collides as the hull of its vertices
+PREPARE_SECONDS = 30.0          # wall s to read and check a spawn's text and files
+_PREPARE_LOCK = threading.Lock()   # one spawn is read at a time (the mesh caches are shared)
 
 
 @dataclass
@@ -49,6 +62,7 @@ class SpawnRequest:
     urdf: Optional[str] = None
     robot: Optional[str] = None
     description: Optional[RobotDescription] = None
+    digest: str = ""    # sha256 of the text it was read from: the key of its parked bodies
 
     def plain_urdf(self) -> Element:
         """A copy of a plain URDF's ``<robot>`` as ``urdf`` writes it: renamed, without
@@ -94,6 +108,87 @@ def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "s
             raise RequestError(PREFIX + "%s: a %s cannot be part of a model that is not "
                                         "<static>" % (shape.name, shape.kind))
     return SpawnRequest(name, world=world)
+
+
+def prepare_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf",
+                  seconds: float = PREPARE_SECONDS) -> SpawnRequest:
+    """Everything of a spawn but building it, for any thread: parse_spawn, its cost held to the
+    MAX_SPAWN_* budgets, and every mesh it names read and converted once (mesh_file's and
+    urdf_meshes' caches), so that building it in the loop does pybullet calls only. RequestError
+    (one line) over a budget, or when the reading took more than ``seconds``: nothing is built
+    then."""
+    with _PREPARE_LOCK:
+        deadline = time.monotonic() + seconds
+        request = parse_spawn(name, xml, pose, kind)
+        request.digest = hashlib.sha256(xml.encode("utf-8", "surrogatepass")).hexdigest()
+        _check_time(deadline, seconds)
+        if request.world is not None:
+            _prepare_world(request.world, deadline, seconds)
+        else:
+            _prepare_urdf(request, deadline, seconds)
+        return request
+
+
+def _check_time(deadline: float, seconds: float) -> None:
+    if time.monotonic() > deadline:
+        raise RequestError(PREFIX + "reading model_xml and its files took more than %g s; "
+                                    "nothing was spawned" % seconds)
+
+
+def _over(what: str, count: int, limit: int) -> RequestError:
+    return RequestError(PREFIX + "%s: %d, more than the %d one spawn may build; nothing was "
+                                 "spawned" % (what, count, limit))
+
+
+def _prepare_world(world: World, deadline: float, seconds: float) -> None:
+    from .mesh_file import load_mesh      # trimesh and pycollada only for meshes
+    pieces = triangles = 0
+    for shape in world.shapes:
+        pieces += 1
+        if shape.kind == "polyline":
+            if len(shape.points) > MAX_POLYLINE_POINTS:
+                raise _over("%s: polyline points" % shape.name, len(shape.points),
+                            MAX_POLYLINE_POINTS)
+            pieces += max(0, len(shape.points) - 3)
+        elif shape.kind == "mesh":
+            try:
+                mesh = load_mesh(shape.mesh, shape.size)
+            except UserError as err:
+                raise RequestError(PREFIX + str(err)) from None
+            triangles += sum(len(part.faces) for part in mesh.parts)
+            pieces += len(mesh.parts) - 1
+            if not shape.static and len(mesh.vertices) > MAX_MOVABLE_MESH_VERTICES:
+                raise _over("%s: vertices of a movable mesh" % shape.name, len(mesh.vertices),
+                            MAX_MOVABLE_MESH_VERTICES)
+            if triangles > MAX_SPAWN_TRIANGLES:
+                raise _over("mesh triangles", triangles, MAX_SPAWN_TRIANGLES)
+            _check_time(deadline, seconds)
+        if pieces > MAX_SPAWN_SHAPES:
+            raise _over("shapes (collisions, visuals, polyline triangles, mesh parts)", pieces,
+                        MAX_SPAWN_SHAPES)
+
+
+def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> None:
+    from .urdf_meshes import bullet_urdf_text, mesh_triangles
+    description = request.description
+    shapes = sum(len(link.visuals) + len(link.collisions)
+                 for link in description.links.values())
+    if shapes > MAX_SPAWN_SHAPES:
+        raise _over("shapes (links' collisions and visuals)", shapes, MAX_SPAWN_SHAPES)
+    try:
+        triangles, hull_vertices = mesh_triangles(description)
+        if triangles > MAX_SPAWN_TRIANGLES:
+            raise _over("mesh triangles", triangles, MAX_SPAWN_TRIANGLES)
+        if hull_vertices > MAX_MOVABLE_MESH_VERTICES:
+            raise _over("vertices of a collision mesh (it collides as their hull)",
+                        hull_vertices, MAX_MOVABLE_MESH_VERTICES)
+        _check_time(deadline, seconds)
+        # the conversions pybullet's copy needs, done now: building it later finds them made
+        bullet_urdf_text(absolute_meshes(description.root, mesh_paths(description)),
+                         os.getcwd())
+    except UserError as err:
+        raise RequestError(PREFIX + str(err)) from None
+    _check_time(deadline, seconds)
 
 
 def _urdf_request(name: str, xml: str, root: Element) -> SpawnRequest:

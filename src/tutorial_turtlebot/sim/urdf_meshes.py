@@ -13,13 +13,16 @@ Wavefront files instead, in metres:
 
 The files are written once per process for each (mesh file, scale) into one folder of the
 system's temporary directory, which is removed when the process ends (the folder of a process
-that was killed is removed by the next process that makes one).
+that was killed is removed by the next process that makes one). The MAX_CONVERTED (mesh file,
+scale) pairs used last are kept; an older one's files are removed (pybullet has read them) and
+written again if it comes back.
 """
 import atexit
 import copy
 import os
 import shutil
 import tempfile
+from collections import OrderedDict
 from typing import Dict, List, Optional, Sequence, Tuple
 from xml.etree import ElementTree
 
@@ -33,9 +36,24 @@ from ..errors import UserError
 Rgba = Tuple[float, float, float, float]
 CACHE_PREFIX = "tutorial_turtlebot_urdf_meshes_"
 
+MAX_CONVERTED = 256   # (mesh file, scale) pairs whose files are kept, of each kind
+
 _cache_dir: Optional[str] = None
-_visual_parts: Dict[tuple, List[Tuple[str, Optional[Rgba]]]] = {}
-_hulls: Dict[tuple, str] = {}
+_visual_parts: "OrderedDict[tuple, List[Tuple[str, Optional[Rgba]]]]" = OrderedDict()
+_hulls: "OrderedDict[tuple, str]" = OrderedDict()
+
+
+def _kept(cache: OrderedDict, key: tuple, value, files: Sequence[str]) -> None:
+    """Put ``value`` (whose files are ``files``) in ``cache`` as the newest; remove the files
+    of the oldest beyond MAX_CONVERTED."""
+    cache[key] = value
+    while len(cache) > MAX_CONVERTED:
+        _, old = cache.popitem(last=False)
+        for path in ([p for p, _ in old] if isinstance(old, list) else [old]):
+            try:
+                os.unlink(path)
+            except OSError:
+                pass
 
 
 def _folder() -> str:
@@ -83,8 +101,11 @@ def visual_parts(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)
     mesh = load_mesh(path, scale)
     key = _key(path, scale)
     folder = _folder()
-    if key not in _visual_parts:
-        _visual_parts[key] = write_obj_parts(mesh, folder)
+    if key in _visual_parts:
+        _visual_parts.move_to_end(key)
+    else:
+        parts = write_obj_parts(mesh, folder)
+        _kept(_visual_parts, key, parts, [path for path, _ in parts])
     return _visual_parts[key]
 
 
@@ -94,13 +115,16 @@ def hull_file(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> str:
     mesh = load_mesh(path, scale)
     key = _key(path, scale)
     folder = _folder()
-    if key not in _hulls:
+    if key in _hulls:
+        _hulls.move_to_end(key)
+    else:
         corners = convex_hull_vertices(mesh)
         if len(corners) < 3:                 # a line or a point: still a file pybullet reads
             corners = np.concatenate([corners, corners[:1], corners[-1:]])[:max(3, len(corners))]
         fan = np.array([(0, k, k + 1) for k in range(1, len(corners) - 1)], dtype=np.int64)
         hull = Mesh(mesh.path, np.asarray(corners, dtype=np.float64), (MeshPart(fan, None),))
-        _hulls[key] = write_obj_parts(hull, folder)[0][0]
+        path = write_obj_parts(hull, folder)[0][0]
+        _kept(_hulls, key, path, [path])
     return _hulls[key]
 
 
@@ -208,6 +232,23 @@ def bullet_urdf_text(robot: ElementTree.Element, base_dir: str) -> str:
     if next(robot.iter("mesh"), None) is not None:
         bullet_meshes(robot, base_dir)
     return urdf_text(robot)
+
+
+def mesh_triangles(description) -> Tuple[int, int]:
+    """(triangles of every mesh a ``urdf_file.RobotDescription`` uses, the most vertices of
+    one of its collision meshes), its files read (and kept, as load_mesh keeps them)."""
+    triangles = hull_vertices = 0
+    for link in description.links.values():
+        for shapes, collide in ((link.visuals, False), (link.collisions, True)):
+            for shape in shapes:
+                geometry = shape.geometry
+                if geometry.shape != "mesh":
+                    continue
+                mesh = load_mesh(geometry.filename, geometry.size)
+                triangles += sum(len(part.faces) for part in mesh.parts)
+                if collide:
+                    hull_vertices = max(hull_vertices, len(mesh.vertices))
+    return triangles, hull_vertices
 
 
 def absolute_meshes(robot: ElementTree.Element, known: Dict[str, str]) -> ElementTree.Element:

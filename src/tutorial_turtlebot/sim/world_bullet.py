@@ -15,6 +15,7 @@ Units: metres; poses in the world frame (z up), as in world_sdf.
 """
 import os
 import tempfile
+from collections import OrderedDict
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -258,22 +259,36 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
     return [(col, vis)]
 
 
+# Triangles of one concave collision shape: pybullet refuses more than 131,072 vertices or
+# 524,287 indices in one (a static mesh beyond that is split; 40,000 triangles use at most
+# 120,000 vertices).
+TRIMESH_CHUNK = 40_000
+
+
 def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str,
                  collide: bool) -> List[Tuple[int, int]]:
-    """A static mesh: its triangles as one concave collision shape (a fixed body collides with
-    the triangles themselves) and a visual per colour part (later parts on links of its body)."""
+    """A static mesh: its triangles as concave collision shapes of TRIMESH_CHUNK triangles or
+    fewer (a fixed body collides with the triangles themselves) and a visual per colour part;
+    the pieces after the first are links of its body."""
     mesh = load_mesh(shape.mesh, shape.size)
-    col = -1
-    if collide:
-        col = pybullet.createCollisionShape(
-            pybullet.GEOM_MESH, vertices=mesh.vertices.tolist(),
-            indices=mesh.faces.reshape(-1).tolist(), flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH,
-            physicsClientId=cid)
+    collisions = []
+    if collide:   # pybullet takes a concave mesh of at most 131,072 vertices: in chunks
+        faces = mesh.faces
+        for start in range(0, len(faces), TRIMESH_CHUNK):
+            chunk = faces[start:start + TRIMESH_CHUNK]
+            used, local = np.unique(chunk, return_inverse=True)
+            collisions.append(pybullet.createCollisionShape(
+                pybullet.GEOM_MESH, vertices=mesh.vertices[used].tolist(),
+                indices=local.reshape(-1).tolist(), flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH,
+                physicsClientId=cid))
     visuals = [pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
                                           rgbaColor=_part_colour(shape, rgba),
                                           physicsClientId=cid)
                for path, rgba in write_obj_parts(mesh, mesh_dir)]
-    return [(col, visuals[0])] + [(-1, v) for v in visuals[1:]]
+    count = max(len(collisions), len(visuals))
+    collisions += [-1] * (count - len(collisions))
+    visuals += [-1] * (count - len(visuals))
+    return list(zip(collisions, visuals))
 
 
 def _prism(polygon: Sequence[Point], height: float, rgba, cid: int, mesh_dir: str,
@@ -365,17 +380,23 @@ def _triangulate(shape: Shape) -> List[Tuple[Point, Point, Point]]:
 # spawn/delete cycle: about 2 KB (a box) and 20 KB (a Burger) of RSS, 16 and 70 KB with EGL.
 # A deleted body is parked instead (far below the world, asleep, colliding with nothing) and
 # the next spawn of the same text takes it back, so that RSS stays flat under churn.
+# At most MAX_PARKED_BODIES wait, the least recently parked removed first: each costs the
+# broadphase a little at every step however asleep it is (2,000 parked boxes: 7 times the CPU
+# of the empty world), and most spawns repeat a few texts.
 PARK_DEPTH = 1e4     # m below the world origin
 PARK_SPACING = 10.0  # m between parked bodies (by body id): they never touch
+MAX_PARKED_BODIES = 64
 
 
 class BodyPool:
-    """Bodies of deleted models by the text they were built from (a key), to be reused."""
+    """Bodies of deleted models by the text they were built from (a key: its digest), to be
+    reused; at most MAX_PARKED_BODIES of them, least recently parked removed first."""
 
     def __init__(self, client_id: int):
         self.client = client_id
-        self._parked: Dict[object, List[List[int]]] = {}
+        self._parked: "OrderedDict[object, List[List[int]]]" = OrderedDict()
         self._pristine: Dict[int, list] = {}   # body -> (mass, inertia) of each link, as built
+        self.parked_bodies = 0
 
     def remember(self, bodies: Sequence[int]) -> None:
         """Note the mass and inertia of new ``bodies`` (set_link_properties may change them
@@ -408,7 +429,22 @@ class BodyPool:
                     pybullet.ACTIVATION_STATE_ENABLE_SLEEPING | pybullet.ACTIVATION_STATE_SLEEP),
                     physicsClientId=cid)
         self._parked.setdefault(key, []).append(bodies)
+        self._parked.move_to_end(key)
+        self.parked_bodies += len(bodies)
+        while self.parked_bodies > MAX_PARKED_BODIES:
+            self._remove_oldest()
         return True
+
+    def _remove_oldest(self) -> None:
+        """Remove the bodies parked longest ago from pybullet."""
+        key, groups = next(iter(self._parked.items()))
+        bodies = groups.pop(0)
+        if not groups:
+            del self._parked[key]
+        for body in bodies:
+            pybullet.removeBody(body, physicsClientId=self.client)
+        self.forget(bodies)
+        self.parked_bodies -= len(bodies)
 
     def take(self, key) -> Optional[List[int]]:
         """Bodies parked under ``key`` (None if none), awake, at rest, every joint at 0, with
@@ -420,6 +456,7 @@ class BodyPool:
         bodies = parked.pop()
         if not parked:
             del self._parked[key]
+        self.parked_bodies -= len(bodies)
         cid = self.client
         for body in bodies:
             for link, built in zip(range(-1, len(self._pristine[body]) - 1),

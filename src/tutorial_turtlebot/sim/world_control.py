@@ -25,7 +25,7 @@ from . import limits
 from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
 from .reference_frames import Pose, Twist
-from .spawn_request import SpawnRequest, parse_spawn, placed
+from .spawn_request import SpawnRequest, placed, prepare_spawn
 from .world_bullet import (MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK, body_pool,
                            build_world, place_world_bodies, reused_world_bodies)
 from .world_lights import Light, read_lights
@@ -231,7 +231,15 @@ class WorldControl:
     def spawn(self, name: str, xml: str, pose: Pose, reference: str = "",
               kind: str = "sdf", robot_namespace: str = "") -> None:
         """Add model ``name`` built from ``xml`` at ``pose`` (in ``reference``); a robot URDF
-        (one with plugins) becomes a robot whose topics and frames are in ``robot_namespace``."""
+        (one with plugins) becomes a robot whose topics and frames are in ``robot_namespace``.
+        The three steps at once: the world API runs the middle one outside the loop."""
+        pose = self.spawn_pose(name, pose, reference, robot_namespace)
+        self.spawn_prepared(prepare_spawn(name, xml, pose, kind), pose, robot_namespace)
+
+    def spawn_pose(self, name: str, pose: Pose, reference: str = "",
+                   robot_namespace: str = "") -> Pose:
+        """Step 1, in the loop (quick): the checks of a spawn's names, and the world pose of
+        ``pose`` in ``reference``. RequestError (Gazebo's status text) if it cannot be."""
         _check_names("SpawnModel: Failure - ", model_name=name, reference_frame=reference,
                      robot_namespace=robot_namespace)
         check_model_name(name)
@@ -247,17 +255,23 @@ class WorldControl:
         else:
             frame = None
         try:
-            pose = placed(pose, frame)
+            return placed(pose, frame)
         except ValueError as err:
             raise RequestError("SpawnModel: Failure - %s" % err) from None
-        request = parse_spawn(name, xml, pose, kind)
+
+    def spawn_prepared(self, request: SpawnRequest, pose: Pose, robot_namespace: str = "") -> None:
+        """Step 3, in the loop: build what ``spawn_request.prepare_spawn`` read and checked
+        (step 2, anywhere) at world ``pose``: bounded work, the pybullet calls only."""
+        name = request.name
+        if name in self.models:       # taken since step 1
+            raise RequestError("SpawnModel: Failure - entity already exists.")
         cid = self.sim.physics.client
         if request.robot is not None:
             self._add_robot(request, pose, robot_namespace)
             return
         pool = body_pool(self.sim.physics)
         if request.world is not None:
-            key = ("sdf", xml)
+            key = ("sdf", request.digest)
             reused = pool.take(key)
             if reused is not None:
                 bodies = reused_world_bodies(request.world, reused)
@@ -269,7 +283,7 @@ class WorldControl:
             built = list(dict.fromkeys(bodies.values()))
         else:
             model = self._load_urdf(request, pose)
-            key, built = self._urdf_key(request.urdf), [model.parts[0].body]
+            key, built = self._urdf_key(request), [model.parts[0].body]
         self.models.add(model)
         self._spawned[name] = (key, built)
 
@@ -286,10 +300,10 @@ class WorldControl:
             os.unlink(path)
 
     @staticmethod
-    def _urdf_key(urdf: str) -> tuple:
-        """The BodyPool key of a plain URDF's body (relative meshes: from the working
-        directory)."""
-        return ("urdf", urdf, os.getcwd())
+    def _urdf_key(request: SpawnRequest) -> tuple:
+        """The BodyPool key of a plain URDF's body: its text's digest (relative meshes: from
+        the working directory)."""
+        return ("urdf", request.digest, os.getcwd())
 
     def _load_urdf(self, request: SpawnRequest, pose: Pose) -> WorldModel:
         """A model of the plain URDF of ``request`` loaded at ``pose``, written for pybullet
@@ -297,12 +311,12 @@ class WorldControl:
         cid = self.sim.physics.client
         name = request.name
         collisions = request.description.collision_names()
-        try:   # meshes as the Wavefront files pybullet loads (urdf_meshes)
+        try:   # meshes as the Wavefront files pybullet loads (urdf_meshes; prepared: cached)
             urdf = bullet_urdf_text(request.plain_urdf(), os.getcwd())
         except UserError as err:
             raise RequestError("SpawnModel: Failure - %s" % err) from None
         pool = body_pool(self.sim.physics)
-        reused = pool.take(self._urdf_key(request.urdf))
+        reused = pool.take(self._urdf_key(request))
         body = reused[0] if reused else self._new_urdf_body(urdf, cid)
         if not reused:
             pool.remember([body])

@@ -17,6 +17,12 @@ model that is not ``<static>`` can be a movable rigid body. Elements that do not
 (physics, scene, light, gui, plugin, sensor, joint ...) are skipped. Anything else that would
 carry geometry (a heightmap, a mesh's ``<submesh>``, an actor) is an error, never a silent gap.
 
+Tolerated as Gazebo tolerates them, each with one line in ``World.warnings`` (file, line, what
+was left out; the node logs them): an ``<include>`` whose model is found nowhere (the model is
+left out), a ``<mesh>`` whose file is found nowhere or is a Collada file that cannot be read
+(the link loads without that collision or visual). A static model's ``<inertial>`` numbers are
+not checked (Gazebo never uses them; its building editor writes mass 0 and inertia nan).
+
 Units: metres, radians. Poses are in the world frame (z up), kept as SDF writes them
 (kinematics.XyzRpy: x, y, z, then SDF's fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch)
 Rx(roll)); kinematics.pose_from_xyz_rpy makes them quaternion poses. Errors are xml_reader's
@@ -30,7 +36,7 @@ from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 from ..errors import UserError, WorldError
 from . import limits
 from . import xml_reader
-from .asset_uri import AssetError, model_sdf_file, resolve_uri
+from .asset_uri import AssetError, AssetNotFound, model_sdf_file, resolve_uri
 from .file_read import not_regular
 from .kinematics import ZERO_XYZ_RPY, XyzRpy, compose_xyz_rpy, rpy_from_matrix
 from .package_data import data_dir
@@ -127,6 +133,7 @@ class World:
     models: Tuple[str, ...]     # top-level model names in file order (as /gazebo/model_states)
     shapes: Tuple[Shape, ...]
     model_specs: Tuple[Model, ...] = ()   # the same models with their links, in file order
+    warnings: Tuple[str, ...] = ()        # one line each: what was left out, and why
 
     def model(self, name: str) -> Model:
         """The top-level model called ``name``; KeyError if there is none."""
@@ -292,6 +299,13 @@ class _Loader(XmlReader):
         self.shapes: List[Shape] = []
         self._links: List[Link] = []
         self._joints: List[Tuple[str, str]] = []    # (name, type)
+        self.warnings: List[str] = []               # shared with the loaders of includes
+
+    def warn(self, node: Element, message: str) -> None:
+        """Note ``message`` about ``node`` ("file:line: message"), once."""
+        line = "%s:%d: %s" % (self.path, node.line, message)
+        if line not in self.warnings:
+            self.warnings.append(line)
 
     # numbers
 
@@ -349,7 +363,7 @@ class _Loader(XmlReader):
             elif node.tag in _UNSUPPORTED_WORLD:
                 self.fail_bare(node, "<%s> is not supported: build it from models" % node.tag)
         return World(name, self.path, tuple(m.name for m in models), tuple(self.shapes),
-                     tuple(models))
+                     tuple(models), tuple(self.warnings))
 
     def top_model(self, node: Element, parent: XyzRpy) -> Model:
         self._links: List[Link] = []
@@ -374,6 +388,12 @@ class _Loader(XmlReader):
                                  "model include itself?)" % (uri, MAX_INCLUDE_DEPTH))
         try:
             found = resolve_uri(uri, self.base_dir)
+        except AssetNotFound as err:     # Gazebo (sdformat) skips it: "Unable to find uri"
+            self.warn(node, "<include> left out: %s" % err)
+            return []
+        except AssetError as err:
+            self.fail_bare(node, "<include>: %s" % err)
+        try:
             sdf = model_sdf_file(found, parse_xml) if os.path.isdir(found) else found
         except AssetError as err:
             self.fail_bare(node, "<include>: %s" % err)
@@ -399,7 +419,7 @@ class _Loader(XmlReader):
             attrib["name"] = name_node.value
         model = xml_reader.element("model", attrib, model.line, children)
         inner = _Loader(sdf, depth=self.depth + 1)
-        inner.shapes = self.shapes
+        inner.shapes, inner.warnings = self.shapes, self.warnings
         if not scope:
             return [inner.top_model(model, parent)]
         inner._links, inner._joints = self._links, self._joints
@@ -443,19 +463,29 @@ class _Loader(XmlReader):
                 if shape is not None:
                     shapes.append(replace(shape, link=link))
         self.shapes.extend(self.pair_twins(shapes))
-        self._links.append(Link(own, link, pose, self.inertial(node.child("inertial"))))
+        self._links.append(Link(own, link, pose,
+                                self.inertial(node.child("inertial"), static)))
 
-    def inertial(self, node: Optional[Element]) -> Inertial:
-        """A link's <inertial>, SDF's defaults for what it leaves out."""
+    def inertial(self, node: Optional[Element], static: bool = False) -> Inertial:
+        """A link's <inertial>, SDF's defaults for what it leaves out.
+
+        Only a movable link's mass and inertia are checked. Gazebo 11 gives a static link no
+        physics body at all (ODELink::UpdateMass returns at once without one), so a static
+        model's numbers are never used: Gazebo's building editor writes mass 0 and inertia
+        nan there. Here such a link keeps SDF's defaults (nothing uses them either). On a
+        movable link Gazebo repairs nothing: ODELink::UpdateMass throws "Setting custom link
+        ... mass to zero!" for a mass that is not > 0 (nan included), and ODE's dBodySetMass
+        asserts a positive definite inertia (gzserver ends with "ODE INTERNAL ERROR ...
+        dMassCheck"). So those stay refused here, with the line at fault."""
         if node is None:
             return Inertial()
         mass = Inertial.mass
         mass_node = node.child("mass")
+        problems = []
         if mass_node is not None:
             mass = self.floats(mass_node, 1, finite=False)[0]
-            problem = limits.mass_problem(mass, field="<mass>")
-            if problem:
-                self.fail_bare(mass_node, problem)
+            problems.append((mass_node, limits.mass_problem(mass, field="<mass>"),
+                             not mass > 0))
         inertia = list(Inertial.inertia)
         inertia_node = node.child("inertia")
         if inertia_node is not None:
@@ -463,11 +493,18 @@ class _Loader(XmlReader):
                 value = inertia_node.child(tag)
                 if value is not None:
                     inertia[i] = self.floats(value, 1, finite=False)[0]
-            problem = limits.inertia_problem(inertia[:3], inertia[3:], names=tuple(
-                "<inertia> %s" % n for n in limits.INERTIA_NAMES))
+            problems.append((inertia_node, limits.inertia_problem(
+                inertia[:3], inertia[3:],
+                names=tuple("<inertia> %s" % n for n in limits.INERTIA_NAMES)),
+                not all(v > 0 for v in inertia[:3])))
+        pose = self.pose(node)           # a pose is checked in any model: nan is garbage
+        for at, problem, not_positive in problems:
+            if problem and static:
+                return Inertial(pose=pose)
             if problem:
-                self.fail_bare(inertia_node, problem)
-        return Inertial(mass, self.pose(node), tuple(inertia))
+                self.fail_bare(at, problem + (" (Gazebo refuses it on a link that is not static)"
+                                              if not_positive else ""))
+        return Inertial(mass, pose, tuple(inertia))
 
     def friction(self, collision: Element) -> float:
         """<surface><friction><ode><mu> of a collision (SDF's default 1)."""
@@ -513,7 +550,10 @@ class _Loader(XmlReader):
             size = self.positive(geo, "height", 1, (1.0,))
             points = self.polygon(geo)
         elif geo.tag == "mesh":
-            size, mesh = self.mesh(geo, name)
+            found = self.mesh(geo, name)
+            if found is None:
+                return None
+            size, mesh = found
         else:
             self.fail_bare(geo, "unsupported geometry <%s> in %s (supported: %s)"
                            % (geo.tag, name, ", ".join(KINDS)))
@@ -524,10 +564,11 @@ class _Loader(XmlReader):
         return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu,
                      mesh=mesh if geo.tag == "mesh" else "", mesh_colours=mesh_colours)
 
-    def mesh(self, geo: Element, name: str) -> Tuple[Tuple[float, ...], str]:
+    def mesh(self, geo: Element, name: str) -> Optional[Tuple[Tuple[float, ...], str]]:
         """(scale, absolute file) of a <mesh>, its file read once here so that a bad one is
-        refused with this line."""
-        from .mesh_file import load_mesh
+        refused with this line. None, with a warning, for a file found nowhere or a Collada
+        file that cannot be read: Gazebo loads the link without that geometry."""
+        from .mesh_file import MeshUnreadable, load_mesh
         uri_node = geo.child("uri")
         if uri_node is None or not uri_node.value:
             self.fail_bare(geo, "<mesh> of %s needs a <uri>" % name)
@@ -544,6 +585,10 @@ class _Loader(XmlReader):
         try:
             path = resolve_uri(uri_node.value, self.base_dir)
             load_mesh(path, scale)
+        except (AssetNotFound, MeshUnreadable) as err:
+            if not any(w.endswith(str(err)) for w in self.warnings):   # once per file
+                self.warn(uri_node, "%s left out: %s" % (name, err))
+            return None
         except UserError as err:
             self.fail_bare(uri_node, str(err))
         return scale, path

@@ -1,0 +1,84 @@
+"""The requests that service and topic callbacks hand to the stepping loop, and their answers.
+
+A callback runs in one of rospy's threads; the world may change only between two steps, in the
+loop's thread. ``LoopRequests.call`` queues an action, wakes the loop, and waits for what the
+action returned or raised. If the loop has not started the action within the caller's time, the
+action is taken back: it never runs, so a client told "did not answer" can rely on nothing
+having happened. An action the loop has started is always waited for and answered (the loop
+holds each one to a bounded amount of work). ``put`` queues without waiting (topic callbacks).
+"""
+import queue
+import threading
+from typing import Callable, Optional
+
+ANSWER_TIMEOUT = 10.0    # wall s a service waits for the loop to start its action
+_QUEUED, _RUNNING, _DONE, _TAKEN_BACK = range(4)
+
+
+class NotAnswered(Exception):
+    """The loop did not start the action in time; it was taken back and will never run."""
+
+
+class _Request:
+    def __init__(self, action: Callable):
+        self.action = action
+        self.state = _QUEUED
+        self.lock = threading.Lock()
+        self.done = threading.Event()
+        self.result = None
+        self.error: Optional[BaseException] = None
+
+
+class LoopRequests:
+    """A queue of actions for the loop, and the event that wakes it from a sleep."""
+
+    def __init__(self):
+        self._queue = queue.Queue()
+        self.wake = threading.Event()   # set by every new request; the loop's sleeps wait on it
+
+    def __bool__(self) -> bool:
+        return not self._queue.empty()
+
+    def put(self, action: Callable) -> _Request:
+        """Queue ``action()`` for the loop and wake it; return at once."""
+        request = _Request(action)
+        self._queue.put(request)
+        self.wake.set()
+        return request
+
+    def call(self, action: Callable, timeout: float):
+        """Run ``action()`` in the loop: what it returns, or the exception it raised, raised
+        here. NotAnswered if the loop did not start it within ``timeout`` s (it never will)."""
+        request = self.put(action)
+        if not request.done.wait(timeout):
+            with request.lock:
+                if request.state == _QUEUED:
+                    request.state = _TAKEN_BACK
+                    raise NotAnswered()
+            request.done.wait()        # started: the loop finishes it, however long it takes
+        if request.error is not None:
+            raise request.error
+        return request.result
+
+    def run_pending(self, after_each: Optional[Callable[[], None]] = None) -> int:
+        """In the loop: run every queued action that was not taken back, each caught (its
+        exception goes to its caller), then ``after_each()``; how many ran."""
+        ran = 0
+        while True:
+            try:
+                request = self._queue.get_nowait()
+            except queue.Empty:
+                return ran
+            with request.lock:
+                if request.state == _TAKEN_BACK:
+                    continue
+                request.state = _RUNNING
+            try:
+                request.result = request.action()
+            except Exception as err:  # noqa: BLE001 - the caller gets it; the loop goes on
+                request.error = err
+            request.state = _DONE
+            request.done.set()
+            ran += 1
+            if after_each is not None:
+                after_each()

@@ -1,0 +1,74 @@
+"""gazebo/loop_requests.py: an action the loop did not start in time never runs; one it started
+is always answered; its exception reaches its caller, and the loop goes on."""
+import threading
+import time
+
+import pytest
+
+from tutorial_turtlebot.gazebo.loop_requests import LoopRequests, NotAnswered
+
+
+def test_an_action_runs_in_the_loop_and_its_result_comes_back():
+    requests = LoopRequests()
+    ran_in = []
+    loop = threading.Thread(target=lambda: (requests.wake.wait(5.0), requests.run_pending()))
+    loop.start()
+    assert requests.call(lambda: ran_in.append(threading.current_thread()) or 42, 5.0) == 42
+    loop.join()
+    assert ran_in == [loop]
+
+
+def test_a_request_the_loop_did_not_start_in_time_never_runs():
+    requests = LoopRequests()
+    ran = []
+    start = time.monotonic()
+    with pytest.raises(NotAnswered):
+        requests.call(lambda: ran.append(1), 0.2)     # the loop is busy elsewhere
+    assert time.monotonic() - start < 1.0
+    assert requests.run_pending() == 0               # the loop comes back: nothing to do
+    assert ran == []
+
+
+def test_a_started_action_is_waited_for_beyond_the_timeout():
+    requests = LoopRequests()
+    started = threading.Event()
+
+    def slow():
+        started.set()
+        time.sleep(0.5)
+        return "done"
+    loop = threading.Thread(target=lambda: (requests.wake.wait(5.0), requests.run_pending()))
+    loop.start()
+    assert requests.call(slow, 0.1) == "done"        # started within 0.1 s, finished after
+    loop.join()
+    assert started.is_set()
+
+
+def test_an_exception_goes_to_the_caller_and_the_next_action_still_runs():
+    requests = LoopRequests()
+    results = {}
+
+    def caller(name, action):
+        try:
+            results[name] = requests.call(action, 5.0)
+        except Exception as err:  # noqa: BLE001
+            results[name] = err
+    threads = [threading.Thread(target=caller, args=("bad", lambda: 1 / 0)),
+               threading.Thread(target=caller, args=("good", lambda: "ok"))]
+    for thread in threads:
+        thread.start()
+    deadline = time.monotonic() + 5.0
+    while len(results) < 2 and time.monotonic() < deadline:
+        requests.run_pending()
+        time.sleep(0.01)
+    for thread in threads:
+        thread.join()
+    assert isinstance(results["bad"], ZeroDivisionError) and results["good"] == "ok"
+
+
+def test_put_wakes_the_loop_and_does_not_wait():
+    requests = LoopRequests()
+    assert not requests
+    requests.put(lambda: None)
+    assert requests and requests.wake.is_set()
+    assert requests.run_pending() == 1 and not requests
