@@ -192,8 +192,8 @@ class AbuseSpawnsTest(unittest.TestCase):
                % "".join("<include><uri>%s</uri><name>r%d</name><pose>0 %g 0 0 0 0</pose>"
                          "</include>" % (row, k, 0.2 * k) for k in range(100)))
         for xml, words in ((polyline, "polyline points: 3000, more than the 256"),
-                           (planes, "more than the 1000 one spawn may build"),
-                           (fan, "more than the 1000 one spawn may build")):
+                           (planes, "more than 1000 collisions and visuals in all"),
+                           (fan, "more than 1000 collisions and visuals in all")):
             message, gap = self.largest_clock_gap(lambda: self.refused(
                 lambda: self.gz.spawn_sdf_model("cabinet", xml, "", pose(5.0, 5.0), ""),
                 "cabinet", words))

@@ -171,3 +171,38 @@ def test_a_model_sdf_that_is_a_fifo_is_refused(tmp_path, models):
                                                      "</include>"))
     assert message.endswith("its model.config names model.sdf: it is a FIFO, not a regular "
                             "file"), message
+
+
+def fan_out(models, width):
+    """A row model of ``width`` boxes, included ``width`` times: width * width boxes."""
+    model_folder(models, "box", BOX, static="true")
+    model_folder(models, "row", "".join(
+        "<include><uri>model://box</uri><name>b%d</name><pose>%d 0 0 0 0 0</pose></include>"
+        % (k, k) for k in range(width)), static="true")
+    return "".join("<include><uri>model://row</uri><name>r%d</name><pose>0 %d 0 0 0 0</pose>"
+                   "</include>" % (k, k) for k in range(width))
+
+
+def test_includes_that_fan_out_stop_at_the_shape_budget(tmp_path, models, monkeypatch):
+    """A 155-character request of three small models once became 10,000 boxes: reading stops
+    at the first shape beyond the budget, with one line."""
+    from tutorial_turtlebot.sim import world_sdf
+    path = world_file(tmp_path, fan_out(models, 10))
+    assert len(load_world(path).shapes) == 100
+    monkeypatch.setattr(world_sdf, "MAX_WORLD_SHAPES", 50)
+    assert "more than 50 collisions and visuals in all (do includes fan out?)" in fault(path)
+
+
+def test_includes_that_fan_out_stop_at_the_include_budget(tmp_path, models, monkeypatch):
+    from tutorial_turtlebot.sim import world_sdf
+    monkeypatch.setattr(world_sdf, "MAX_INCLUDES", 20)
+    message = fault(world_file(tmp_path, fan_out(models, 10)))
+    assert "more than 20 includes in all (do includes fan out?)" in message
+
+
+def test_a_spawn_stops_reading_at_its_own_budget(models):
+    from tutorial_turtlebot.sim.world_sdf import load_model_xml
+    body = fan_out(models, 10)
+    xml = '<sdf version="1.6"><model name="m"><static>true</static>%s</model></sdf>' % body
+    with pytest.raises(WorldError, match="more than 30 collisions and visuals in all"):
+        load_model_xml(xml, "model_xml", "m", max_shapes=30)

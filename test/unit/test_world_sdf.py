@@ -11,6 +11,8 @@ from tutorial_turtlebot.errors import WorldError
 from tutorial_turtlebot.sim.world_sdf import (DEFAULT_RGBA, WORLD_DIR, WORLDS, load_world,
                                           resolve_world)
 
+from unit_helpers import world_fault
+
 WORLD_FILES = sorted(glob.glob(os.path.join(WORLD_DIR, "*.world")))
 SYMBOL = "ros_symbol::symbol::"
 GREEN, WHITE = (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 1.0, 1.0)
@@ -242,24 +244,18 @@ def test_a_bare_model_file_loads(tmp_path):
 
 # --- bad input ----------------------------------------------------------------------------------
 
-def fault(path):
-    with pytest.raises(WorldError) as err:
-        load_world(path)
-    message = str(err.value)
-    assert "\n" not in message and path in message
-    return message
 
 
 def test_malformed_xml_names_file_and_line(tmp_path):
     path = tmp_path / "broken.world"
     path.write_text('<sdf version="1.6">\n<world name="w">\n<model name="m">\n</world>\n</sdf>\n')
-    message = fault(str(path))
+    message = world_fault(str(path))
     assert ":4:" in message and "malformed XML" in message and "mismatched tag" in message
 
 
 def test_an_unsupported_geometry_names_element_file_and_line(tmp_path):
     # (a missing mesh is a warning: test_world_tolerance.py)
-    message = fault(write(tmp_path, model("<heightmap><uri>h.png</uri></heightmap>")))
+    message = world_fault(write(tmp_path, model("<heightmap><uri>h.png</uri></heightmap>")))
     assert ":4:" in message and "<heightmap>" in message and "m::l::c" in message
     assert "box, cylinder, sphere, plane, polyline, mesh" in message
 
@@ -272,19 +268,19 @@ def test_an_unsupported_geometry_names_element_file_and_line(tmp_path):
     ("<polyline><point>0 0</point><point>1 x</point><height>1</height></polyline>", "<point>"),
 ])
 def test_bad_numbers_name_the_element(tmp_path, geometry, element):
-    message = fault(write(tmp_path, model(geometry)))
+    message = world_fault(write(tmp_path, model(geometry)))
     assert ":4:" in message and element in message
 
 
 def test_bad_pose_and_flag(tmp_path):
-    assert "<pose>" in fault(write(tmp_path, model("<sphere/>", pose="0 0 zero 0 0 0")))
-    message = fault(write(tmp_path, '<model name="m"><static>maybe</static></model>'))
+    assert "<pose>" in world_fault(write(tmp_path, model("<sphere/>", pose="0 0 zero 0 0 0")))
+    message = world_fault(write(tmp_path, '<model name="m"><static>maybe</static></model>'))
     assert "<static>" in message and "maybe" in message
 
 
 def test_self_crossing_polyline_is_refused(tmp_path):
     points = "".join("<point>%s</point>" % p for p in ("0 0", "1 1", "1 0", "0 1"))
-    message = fault(write(tmp_path, model("<polyline>%s<height>1</height></polyline>" % points)))
+    message = world_fault(write(tmp_path, model("<polyline>%s<height>1</height></polyline>" % points)))
     assert "<polyline>" in message and "simple polygon" in message
 
 
@@ -295,18 +291,18 @@ def test_self_crossing_polyline_is_refused(tmp_path):
      '<visual name="c"><geometry><sphere/></geometry></visual></link></model>', "m::l::c"),
 ])
 def test_unsupported_content_is_refused(tmp_path, body, words):
-    assert words in fault(write(tmp_path, body))
+    assert words in world_fault(write(tmp_path, body))
 
 
 def test_not_an_sdf_file(tmp_path):
     path = tmp_path / "robot.sdf"
     path.write_text('<robot name="r"/>')
-    assert "<robot>" in fault(str(path))
+    assert "<robot>" in world_fault(str(path))
 
 
 def test_missing_file_is_named(tmp_path):
     missing = str(tmp_path / "nowhere.world")
-    assert "cannot read world file: No such file" in fault(missing)
+    assert "cannot read world file: No such file" in world_fault(missing)
     with pytest.raises(WorldError, match="nowhere.world"):
         resolve_world(missing)
 

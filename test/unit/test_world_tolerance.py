@@ -5,10 +5,11 @@ import os
 
 import pytest
 
-from tutorial_turtlebot.errors import WorldError
 from tutorial_turtlebot.sim.mesh_file import cache_clear
 from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world_sdf import Inertial, load_model_xml, load_world
+
+from unit_helpers import world_fault
 
 BOX = '<box><size>1 1 1</size></box>'
 
@@ -28,12 +29,6 @@ def world_file(tmp_path, body, name="test.world"):
     return str(path)
 
 
-def fault(path):
-    with pytest.raises(WorldError) as err:
-        load_world(path)
-    message = str(err.value)
-    assert "\n" not in message and path in message
-    return message
 
 
 def link(inertial="", geometry=BOX, extra=""):
@@ -76,7 +71,7 @@ def test_a_nan_pose_is_still_refused_in_a_static_model(tmp_path, where):
         body = model(link(), pose="0 nan 0 0 0 0")
     else:
         body = model(link("<pose>0 0 nan 0 0 0</pose>" + BUILDING_EDITOR))
-    assert "<pose>" in fault(world_file(tmp_path, body))
+    assert "<pose>" in world_fault(world_file(tmp_path, body))
 
 
 # --- 2. values Gazebo uses are refused where Gazebo refuses them ----------------------------
@@ -93,12 +88,12 @@ def test_a_movable_links_bad_mass_or_inertia_is_refused_as_gazebo_refuses_it(tmp
                                                                                words):
     """Gazebo's ODELink::UpdateMass throws for a mass that is not > 0; ODE asserts a positive
     definite inertia. Nothing is repaired there, so nothing is here."""
-    message = fault(world_file(tmp_path, model(link(inertial), static="false")))
+    message = world_fault(world_file(tmp_path, model(link(inertial), static="false")))
     assert words in message and "Gazebo refuses it on a link that is not static" in message
 
 
 def test_a_movable_links_huge_mass_is_refused_by_our_bound_not_gazebos(tmp_path):
-    message = fault(world_file(tmp_path, model(link("<mass>1e9</mass>"), static="false")))
+    message = world_fault(world_file(tmp_path, model(link("<mass>1e9</mass>"), static="false")))
     assert "<mass> 1e+09 must be positive, at most 1e+06 kg" in message
     assert "Gazebo" not in message
 
@@ -181,16 +176,16 @@ def test_the_world_runs_without_what_was_left_out(tmp_path):
 
 def test_a_mesh_that_is_no_regular_file_is_still_refused(tmp_path):
     os.mkfifo(str(tmp_path / "pipe.dae"))
-    message = fault(world_file(tmp_path, model(link(geometry=mesh("pipe.dae")))))
+    message = world_fault(world_file(tmp_path, model(link(geometry=mesh("pipe.dae")))))
     assert "pipe.dae" in message and "FIFO" in message
 
 
 def test_an_stl_that_cannot_be_read_is_still_refused(tmp_path):
     (tmp_path / "bad.stl").write_bytes(b"solid nothing\nendsolid\n")
-    assert "bad.stl" in fault(world_file(tmp_path, model(link(geometry=mesh("bad.stl")))))
+    assert "bad.stl" in world_fault(world_file(tmp_path, model(link(geometry=mesh("bad.stl")))))
 
 
 def test_malformed_world_xml_is_still_refused(tmp_path):
     path = tmp_path / "broken.world"
     path.write_text('<sdf version="1.6"><world name="w"><model name="m"></world></sdf>')
-    assert "malformed XML" in fault(str(path))
+    assert "malformed XML" in world_fault(str(path))

@@ -126,3 +126,16 @@ def within(seconds, call, *args):
     if "error" in out:
         raise out["error"]
     return out["result"]
+
+
+def world_fault(path):
+    """The one-line WorldError that loading the world file ``path`` raises (it names the
+    file)."""
+    import pytest
+    from tutorial_turtlebot.errors import WorldError
+    from tutorial_turtlebot.sim.world_sdf import load_world
+    with pytest.raises(WorldError) as err:
+        load_world(path)
+    message = str(err.value)
+    assert "\n" not in message and path in message
+    return message

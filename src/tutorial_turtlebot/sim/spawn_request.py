@@ -100,7 +100,8 @@ def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "s
         raise RequestError(PREFIX + "model_xml: the root element is <%s>: expected <sdf> or "
                                     "<robot>" % root.tag)
     try:
-        world = load_model_xml(root, "model_xml", name, xyz_rpy_from_pose(pose))
+        world = load_model_xml(root, "model_xml", name, xyz_rpy_from_pose(pose),
+                               max_shapes=MAX_SPAWN_SHAPES)
     except UserError as err:
         raise RequestError(PREFIX + str(err)) from None
     for shape in world.shapes:

@@ -46,6 +46,10 @@ Rgba = Tuple[float, float, float, float]
 Spawn = Tuple[float, float, float]                       # x, y (m), yaw (rad) of base_footprint
 KINDS = ("box", "cylinder", "sphere", "plane", "polyline", "mesh")
 MAX_INCLUDE_DEPTH = 16        # <include>s nested deeper than this are refused (a model including itself)
+# What one document may expand to, includes and all (a 155-character request of three local
+# models once fanned out to 10,000 boxes): reading stops with one line beyond these.
+MAX_WORLD_SHAPES = 100_000   # collisions and visuals
+MAX_INCLUDES = 10_000
 DEFAULT_RGBA: Rgba = (0.7, 0.7, 0.7, 1.0)   # a visual without material: Gazebo's light grey
 
 # Diffuse colours of the Gazebo/<Name> materials (gazebo.material) these worlds and common ones use.
@@ -300,6 +304,7 @@ class _Loader(XmlReader):
         self._links: List[Link] = []
         self._joints: List[Tuple[str, str]] = []    # (name, type)
         self.warnings: List[str] = []               # shared with the loaders of includes
+        self.budget = {"shapes": MAX_WORLD_SHAPES, "includes": MAX_INCLUDES}   # shared too
 
     def warn(self, node: Element, message: str) -> None:
         """Note ``message`` about ``node`` ("file:line: message"), once."""
@@ -386,6 +391,10 @@ class _Loader(XmlReader):
         if self.depth >= MAX_INCLUDE_DEPTH:
             self.fail_bare(node, "<include> of %s: includes nested more than %d deep (does a "
                                  "model include itself?)" % (uri, MAX_INCLUDE_DEPTH))
+        self.budget["includes"] -= 1
+        if self.budget["includes"] < 0:
+            self.fail_bare(node, "<include> of %s: more than %d includes in all (do includes "
+                                 "fan out?)" % (uri, MAX_INCLUDES))
         try:
             found = resolve_uri(uri, self.base_dir)
         except AssetNotFound as err:     # Gazebo (sdformat) skips it: "Unable to find uri"
@@ -419,7 +428,7 @@ class _Loader(XmlReader):
             attrib["name"] = name_node.value
         model = xml_reader.element("model", attrib, model.line, children)
         inner = _Loader(sdf, depth=self.depth + 1)
-        inner.shapes, inner.warnings = self.shapes, self.warnings
+        inner.shapes, inner.warnings, inner.budget = self.shapes, self.warnings, self.budget
         if not scope:
             return [inner.top_model(model, parent)]
         inner._links, inner._joints = self._links, self._joints
@@ -463,6 +472,9 @@ class _Loader(XmlReader):
                 if shape is not None:
                     shapes.append(replace(shape, link=link))
         self.shapes.extend(self.pair_twins(shapes))
+        if len(self.shapes) > self.budget["shapes"]:
+            self.fail_bare(node, "more than %d collisions and visuals in all (do includes fan "
+                                 "out?)" % self.budget["shapes"])
         self._links.append(Link(own, link, pose,
                                 self.inertial(node.child("inertial"), static)))
 
@@ -675,14 +687,18 @@ def load_world(path: str) -> World:
     return world
 
 
-def load_model_xml(root, source: str, name: str, pose: XyzRpy = ZERO_XYZ_RPY) -> World:
+def load_model_xml(root, source: str, name: str, pose: XyzRpy = ZERO_XYZ_RPY,
+                   max_shapes: int = None) -> World:
     """The one ``<model>`` of an SDF document (a spawn request's model_xml): ``root`` is its
     root element as xml_reader parsed it (changed here), or its text, parsed here. The model is
     renamed ``name`` and placed with its own <pose> composed onto ``pose``; WorldError (one
-    line with the line number) if it is not that."""
+    line with the line number) if it is not that, or if it holds more than ``max_shapes``
+    (default MAX_WORLD_SHAPES) collisions and visuals: reading stops there."""
     if not isinstance(root, Element):
         root = parse_xml(root, source)
     loader = _Loader(source, base_dir=os.getcwd())
+    if max_shapes is not None:
+        loader.budget["shapes"] = max_shapes
     if root.tag not in ("sdf", "gazebo"):
         loader.fail_bare(root, "the root element is <%s>: an SDF model starts with <sdf>"
                          % root.tag)
