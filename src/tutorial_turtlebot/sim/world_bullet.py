@@ -381,11 +381,11 @@ def _triangulate(shape: Shape) -> List[Tuple[Point, Point, Point]]:
 # A deleted body is parked instead (far below the world, asleep, colliding with nothing) and
 # the next spawn of the same text takes it back, so that RSS stays flat under churn.
 # At most MAX_PARKED_BODIES wait, the least recently parked removed first: each costs the
-# broadphase a little at every step however asleep it is (2,000 parked boxes: 7 times the CPU
-# of the empty world), and most spawns repeat a few texts.
+# step a little however asleep it is (2,000 parked boxes: 7 times the CPU of the empty world;
+# 64: 1.26 times; 16: 1.10), and most churn repeats a few texts (the hostile soak: 21).
 PARK_DEPTH = 1e4     # m below the world origin
 PARK_SPACING = 10.0  # m between parked bodies (by body id): they never touch
-MAX_PARKED_BODIES = 64
+MAX_PARKED_BODIES = 32
 
 
 class BodyPool:
