@@ -16,6 +16,10 @@ message): text over ``MAX_XML_BYTES``, anything xml_reader refuses (malformed XM
 a DOCTYPE, nesting deeper than xml_reader.MAX_DEPTH), an unknown root, anything urdf_file or
 world_sdf refuses (a mesh file that cannot be found or is of an unknown kind, a bad mesh scale,
 any number beyond the limits of ``limits``), an initial pose beyond them.
+
+``prepare_spawn`` does all of that outside the stepping loop (the world API calls it from the
+service's own thread), holds the spawn to the MAX_SPAWN_* budgets of what the loop may build,
+and reads every mesh once, so that the loop only makes the pybullet bodies.
 """
 import hashlib
 import os
