@@ -1,6 +1,11 @@
 """Errors that reach the user as one readable line (never a traceback)."""
 
 
+def one_line(err: BaseException) -> str:
+    """An unexpected exception as one short line: "OverflowError: float too large to pack"."""
+    return "%s: %s" % (type(err).__name__, " ".join(str(err).split())[:300])
+
+
 class UserError(Exception):
     """Bad input from the user: a wrong argument, parameter, model, world or file.
 

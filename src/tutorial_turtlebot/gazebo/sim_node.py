@@ -61,7 +61,7 @@ from . import tcpros_guard, unreachable_publishers
 from .loop_requests import ANSWER_TIMEOUT, LoopRequests, NotAnswered
 from .master_watch import MasterWatch
 from .world_api import WorldApi
-from ..errors import UserError
+from ..errors import UserError, one_line
 from ..node_output import line_buffered
 from ..sim.kinematics import yaw_from_quat
 from .nonblocking_publisher import Backlog, make_nonblocking
@@ -102,11 +102,6 @@ OUTPUT_ERROR_PERIOD = 10.0
 
 
 _private_params = None   # the node's private parameters, read from the master once
-
-
-def _one_line(err: Exception) -> str:
-    """"OverflowError: float too large to pack": an unexpected exception, in one short line."""
-    return "%s: %s" % (type(err).__name__, " ".join(str(err).split())[:300])
 
 
 def _param(name, default, kind, allow_empty=False):
@@ -213,7 +208,7 @@ class SimNode:
                 except Exception as err:  # noqa: BLE001 - one robot must not end the node
                     self.sim.models.remove(name)
                     failed = failed or RequestError("robot %r: its topics could not be made: %s"
-                                                    % (name, _one_line(err)))
+                                                    % (name, one_line(err)))
                     continue
                 for warning in robot.warnings:
                     rospy.logwarn("%s: %s", name, warning)
@@ -252,7 +247,7 @@ class SimNode:
             return
         self._output_errors[key] = now + OUTPUT_ERROR_PERIOD
         rospy.logerr("gazebo: robot %s: its %s failed and was skipped: %s", robot, output,
-                     _one_line(err))
+                     one_line(err))
 
     def _publish_clock(self, stamp) -> None:
         # The sim's own rospy time follows its clock directly (see main: no /clock round trip).
@@ -281,9 +276,9 @@ class SimNode:
                     "%s: the simulation loop did not answer within %g s; nothing was done"
                     % (name, ANSWER_TIMEOUT)) from None
             except Exception as err:  # noqa: BLE001 - named to the caller, the loop goes on
-                rospy.logerr("%s: internal error: %s", name, _one_line(err))
+                rospy.logerr("%s: internal error: %s", name, one_line(err))
                 raise rospy.ServiceException("%s: internal error: %s"
-                                             % (name, _one_line(err))) from None
+                                             % (name, one_line(err))) from None
             return EmptyResponse()
         return handle
 

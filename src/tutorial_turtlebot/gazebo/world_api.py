@@ -53,6 +53,7 @@ from gazebo_msgs.srv import (ApplyBodyWrench, ApplyBodyWrenchResponse, ApplyJoin
 from geometry_msgs.msg import Pose, Twist
 
 from .loop_requests import ANSWER_TIMEOUT, NotAnswered
+from ..errors import one_line
 from .part_times import TIMES
 from ..sim.physics_properties import OdeConfig, PhysicsProperties
 from ..sim.spawn_request import prepare_spawn
@@ -200,8 +201,7 @@ class WorldApi:
                 problem = ("the simulation did not answer within %g s; nothing was done"
                            % ANSWER_TIMEOUT)
             except Exception as err:  # noqa: BLE001 - a request must never stop the node
-                problem = "internal error: %s: %s" % (type(err).__name__,
-                                                      " ".join(str(err).split())[:300])
+                problem = "internal error: " + one_line(err)
                 rospy.logerr("%s: %s", name, problem)
             return failure(srv_type, "%s: %s" % (name, problem))
         return call
@@ -214,7 +214,7 @@ class WorldApi:
             except RequestError as err:
                 rospy.logwarn_throttle(5.0, str(err))
             except Exception as err:  # noqa: BLE001
-                rospy.logerr("%s: %s", type(err).__name__, err)
+                rospy.logerr(one_line(err))
         self.node.requests.put(run)
 
     # --- publishing --------------------------------------------------------------------------

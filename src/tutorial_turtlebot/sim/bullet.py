@@ -23,7 +23,8 @@ def quiet_output():
             chunk = os.read(read_end, 65536)
             if not chunk:
                 return
-            printed.extend(chunk[:1 << 20])      # what it says, not kept without end
+            if len(printed) < 1 << 20:           # what it says, not kept without end
+                printed.extend(chunk)
     reader = threading.Thread(target=drain, name="quiet_output", daemon=True)
     reader.start()
     try:

@@ -27,7 +27,8 @@ of at most file_read.MAX_MESH_FILE_BYTES, the others MAX_MESH_SIDE_FILE_BYTES. A
 that is a zip archive (.zae) is refused, as Gazebo refuses it.
 
 trimesh and pycollada are imported on first use, so worlds without meshes do not pay for them.
-A file is read once per process for the same (real path, mtime, size), whatever the scale.
+A file is read once for the same (real path, mtime, size), whatever the scale, while its mesh
+is among the last MAX_CACHED_BYTES of meshes used.
 """
 import io
 import math
@@ -159,6 +160,7 @@ def _read(path: str, suffix: str) -> Mesh:
     """The file's mesh, unscaled, checked: finite vertices, triangles with indices in range."""
     data = read_file(path, MAX_MESH_FILE_BYTES, "this %s file" % _FORMATS[suffix], MeshError)
     side_files = _SideFiles(path)
+    unreadable = MeshUnreadable if suffix == ".dae" else MeshError   # its content, not the file
     try:
         with warnings.catch_warnings():   # pycollada's numpy.matrix, trimesh's notes
             warnings.simplefilter("ignore")
@@ -170,7 +172,6 @@ def _read(path: str, suffix: str) -> Mesh:
         if side_files.refused is not None:
             raise MeshError(side_files.refused) from None
         text = " ".join(str(err).split()) or type(err).__name__
-        unreadable = MeshUnreadable if suffix == ".dae" else MeshError
         raise unreadable("%s: cannot read this %s file: %s"
                          % (path, _FORMATS[suffix], text[:200])) from None
     if side_files.refused is not None:
@@ -178,7 +179,7 @@ def _read(path: str, suffix: str) -> Mesh:
     parts = [(np.asarray(f, dtype=np.int64).reshape(-1, 3), rgba) for f, rgba in parts]
     parts = [(f, rgba) for f, rgba in parts if len(f)]
     if not parts:
-        raise (MeshUnreadable if suffix == ".dae" else MeshError)(
+        raise unreadable(
             "%s: the file holds no triangles" % path)
     vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
     if not np.all(np.isfinite(vertices)):
@@ -193,7 +194,7 @@ def _read(path: str, suffix: str) -> Mesh:
              for f, rgba in parts]
     parts = [(f, rgba) for f, rgba in parts if len(f)]
     if not parts:
-        raise (MeshUnreadable if suffix == ".dae" else MeshError)(
+        raise unreadable(
             "%s: the file holds no triangles (only degenerate ones)" % path)
     return Mesh(path, vertices, tuple(MeshPart(f, rgba) for f, rgba in _merge_colours(parts)))
 

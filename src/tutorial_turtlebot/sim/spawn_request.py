@@ -89,7 +89,14 @@ def _check_size(xml: str) -> None:
 def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf") -> SpawnRequest:
     """Check and parse a spawn of ``xml`` as model ``name`` at world ``pose``. ``kind`` is the
     service called: "sdf" takes SDF or URDF (as Gazebo's spawn_sdf_model does), "urdf" only
-    URDF. A robot's errors name it "model_xml of <name>", others "model_xml"."""
+    URDF. A robot's errors name it "model_xml of <name>", others "model_xml". The request
+    carries the text's digest (the key of its bodies once deleted)."""
+    request = _parse(name, xml, pose, kind)
+    request.digest = hashlib.sha256(xml.encode("utf-8", "surrogatepass")).hexdigest()
+    return request
+
+
+def _parse(name: str, xml: str, pose: rf.Pose, kind: str) -> SpawnRequest:
     _check_size(xml)
     try:
         root = xml_reader.parse(xml, "model_xml")
@@ -125,7 +132,6 @@ def prepare_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = 
     with _PREPARE_LOCK:
         deadline = time.monotonic() + seconds
         request = parse_spawn(name, xml, pose, kind)
-        request.digest = hashlib.sha256(xml.encode("utf-8", "surrogatepass")).hexdigest()
         _check_time(deadline, seconds)
         if request.world is not None:
             _prepare_world(request.world, deadline, seconds)
