@@ -4,5 +4,5 @@ from setuptools import setup
 
 setup(**generate_distutils_setup(
     packages=["tutorial_turtlebot", "tutorial_turtlebot.sim", "tutorial_turtlebot.gazebo",
-              "tutorial_turtlebot.lab"],
+              "tutorial_turtlebot.gazebo.impl", "tutorial_turtlebot.lab"],
     package_dir={"": "src"}))

@@ -36,6 +36,13 @@ Measured (Burger in turtlebot3_world unless said):
                     meshes, found through GAZEBO_MODEL_PATH): start-up and as fast as possible
                     with every sensor subscribed, beside the same rows of the built-in world
                     (its primitive-shape copy, the default)
+  meshworld         a generated world of 110 textured Collada models (bench/mesh_world.py,
+                    found through GAZEBO_MODEL_PATH) beside the built-in turtlebot3_world: start-up
+                    -> first /scan with an empty mesh cache (ROS_HOME a new temporary folder) and
+                    again with the cache the first start filled, the second start's ratio to the
+                    built-in world's; CPU s per sim s of Simulation.step (physics alone; and
+                    with every sensor computed), no ROS, the two worlds stepped in turns in one
+                    process, and their ratio
   multi             three Burgers in turtlebot3_house (multi_turtlebot3.launch) with every
                     sensor of each and /tf subscribed: sim CPU at real time, factor as fast as
                     possible; 1, 2, 4, 8 Burgers spawned into the empty world (the sim node
@@ -54,8 +61,8 @@ Measured (Burger in turtlebot3_world unless said):
                     groups: it takes about 12 minutes)
 
 ``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, jitter, fast, world,
-subscribers, camera, render, meshes, multi, soak, hostile); the default is all of them but
-soak and hostile.
+subscribers, camera, render, meshes, meshworld, multi, soak, hostile); the default is all of
+them but soak and hostile.
 """
 import argparse
 import os
@@ -87,6 +94,8 @@ TARGETS = {
     "multi_rt_cpu": "<= 10 %",
     "multi_fast": ">= 20x",
     "stage": ">= 100/s",
+    "meshworld_second": "<= 2",
+    "meshworld_physics": "<= 1.3",
 }
 
 
@@ -689,7 +698,7 @@ def median(values):
 
 
 GROUPS = ("startup", "realtime", "jitter", "fast", "world", "subscribers", "camera", "render",
-          "meshes", "multi")
+          "meshes", "meshworld", "multi")
 EXTRA_GROUPS = ("soak", "hostile")   # long: run only when named in --only
 
 
@@ -835,6 +844,8 @@ def main():
             row("render %dx%d, %s" % (width, height, renderer), "%.1f" % ms, "ms")
     if "meshes" in only:
         mesh_rows(args.runs, row)
+    if "meshworld" in only:
+        mesh_world_rows(args.runs, row)
     if "multi" in only:
         multi_rows(args.runs, row)
     if "soak" in only:   # one run: it is long
@@ -867,6 +878,92 @@ def mesh_rows(runs, row):
         fast = [measure_running(0, ALL_SENSORS, mesh_world=mesh)[0] for _ in range(runs)]
         row("  the same: as fast as possible, every sensor subscribed", "%.1f" % median(fast),
             "x")
+
+
+def generated_mesh_world():
+    """(world file, models folder) of bench/mesh_world.py, written once into a temporary folder
+    (removed at exit)."""
+    import atexit
+    import shutil
+    import tempfile
+    from mesh_world import write_mesh_world
+    folder = tempfile.mkdtemp(prefix="bench_mesh_world_")
+    atexit.register(shutil.rmtree, folder, True)
+    return write_mesh_world(folder)
+
+
+def mesh_world_physics(world, models, sim_seconds=4.0, rounds=4):
+    """{(world, sensors): CPU s per sim s} of Simulation.step of a Burger driving a 0.33 m
+    circle (sensors: every output computed as it falls due), no ROS, in turtlebot3_world and
+    in ``world``; the two step in turns, ``rounds`` times, in this process."""
+    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+    os.environ["GAZEBO_MODEL_PATH"] = models
+    sims = {name: Simulation(SimConfig(model="burger", world=name))
+            for name in ("turtlebot3_world", world)}
+    cpu = {}
+    try:
+        for sim in sims.values():
+            sim.command(0.1, 0.3)
+            for _ in range(400):
+                sim.step()
+        steps = int(round(sim_seconds / rounds / 0.0025))
+        for _ in range(rounds):
+            for name, sim in sims.items():
+                for sensors in (False, True):
+                    t0 = time.process_time()
+                    for _ in range(steps):
+                        due = sim.step()
+                        if sensors:
+                            step_outputs(sim, due)
+                    key = (name, sensors)
+                    cpu[key] = cpu.get(key, 0.0) + time.process_time() - t0
+    finally:
+        for sim in sims.values():
+            sim.close()
+    return {key: value / sim_seconds for key, value in cpu.items()}
+
+
+def mesh_world_rows(runs, row):
+    """The generated mesh world's start-up (empty cache, then filled) and physics cost, beside
+    the built-in turtlebot3_world, measured in turns."""
+    import shutil
+    import tempfile
+    world, models = generated_mesh_world()
+    mesh_env = {"GAZEBO_MODEL_PATH": models}
+    builtin, first, second = [], [], []
+    for _ in range(runs):
+        home = tempfile.mkdtemp(prefix="bench_ros_home_")
+        try:
+            builtin.append(measure_startup(env={"ROS_HOME": home}))
+            first.append(measure_startup(world=world, env=dict(mesh_env, ROS_HOME=home)))
+            second.append(measure_startup(world=world, env=dict(mesh_env, ROS_HOME=home)))
+        finally:
+            shutil.rmtree(home, ignore_errors=True)
+    row("built-in turtlebot3_world: start-up -> first /scan", "%.2f" % median(builtin), "s")
+    row("generated world, 110 textured Collada models: first start (empty mesh cache)",
+        "%.2f" % median(first), "s")
+    row("  the same, second start (the mesh cache filled)", "%.2f" % median(second), "s")
+    row("  second start / built-in world's start", "%.2f" % median(
+        [s / b for s, b in zip(second, builtin)]), "", TARGETS["meshworld_second"])
+    home = tempfile.mkdtemp(prefix="bench_ros_home_")
+    old_home = os.environ.get("ROS_HOME")
+    os.environ["ROS_HOME"] = home
+    try:
+        costs = [mesh_world_physics(world, models) for _ in range(runs)]
+    finally:
+        if old_home is None:
+            os.environ.pop("ROS_HOME", None)
+        else:
+            os.environ["ROS_HOME"] = old_home
+        shutil.rmtree(home, ignore_errors=True)
+    for sensors, label in ((False, "physics alone"), (True, "physics and every sensor")):
+        builtin_cost = median([c[("turtlebot3_world", sensors)] for c in costs])
+        mesh_cost = median([c[(world, sensors)] for c in costs])
+        row("CPU s per sim s, no ROS, %s: built-in / generated mesh world" % label,
+            "%.4f / %.4f" % (builtin_cost, mesh_cost), "s")
+        row("  generated mesh world / built-in world", "%.2f" % median(
+            [c[(world, sensors)] / c[("turtlebot3_world", sensors)] for c in costs]), "x",
+            TARGETS["meshworld_physics"] if not sensors else "")
 
 
 def multi_rows(runs, row):

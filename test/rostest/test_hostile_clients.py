@@ -9,12 +9,17 @@
   dynamic_reconfigure, and /clock goes on; at the slowest pace allowed and while paused a
   service answers within 1 s.
 - Ctrl-C (SIGINT) ends a sim of its own (own master on a free port) within 2 s: at real time,
-  as fast as possible, paused, at the slowest pace, in the middle of a spawn.
+  as fast as possible, paused, at the slowest pace, in the middle of a robot's spawn, and
+  while a heavy spawn is being prepared (the convex hull of a 60,000-vertex movable mesh: about
+  8 s of work in the service's thread).
 """
+import math
 import os
+import shutil
 import socket
 import struct
 import subprocess
+import tempfile
 import threading
 import time
 import unittest
@@ -220,7 +225,7 @@ class HostileClientsTest(unittest.TestCase):
         for state, args in (("real time", []), ("as fast as possible", ["_real_time_factor:=0"]),
                             ("paused", ["_paused:=true"]),
                             ("slowest pace", ["_real_time_factor:=%g" % SLOWEST_FACTOR]),
-                            ("spawning", [])):
+                            ("spawning", []), ("preparing a heavy spawn", [])):
             sim = OwnSim(*args)
             try:
                 self.assertTrue(wait_for(lambda: sim.service("get_world_properties"), WAIT),
@@ -233,6 +238,12 @@ class HostileClientsTest(unittest.TestCase):
                                                  robot_namespace="tb3_1",
                                                  reference_frame="world")).start()
                     time.sleep(0.05)
+                if state == "preparing a heavy spawn":
+                    threading.Thread(target=sim.call, daemon=True,
+                                     args=("spawn_sdf_model", SpawnModel),
+                                     kwargs=dict(model_name="ball", model_xml=self.ball_sdf(),
+                                                 reference_frame="world")).start()
+                    time.sleep(1.5)   # the spawn is read, its hull being built
                 times[state] = sim.interrupt()
             finally:
                 sim.close()
@@ -242,6 +253,28 @@ class HostileClientsTest(unittest.TestCase):
         for state, took in times.items():
             self.assertIsNotNone(took, "%s: the sim ignored SIGINT for 10 s" % state)
             self.assertLess(took, STOP, "%s: the sim took %.2f s to stop" % (state, took))
+
+
+    def ball_sdf(self):
+        """A movable model whose mesh is 60,000 points on a 0.2 m sphere (an OBJ of our own,
+        in a temporary folder): every point is a corner of its convex hull."""
+        folder = tempfile.mkdtemp(prefix="ctrl_c_ball_")
+        self.addCleanup(shutil.rmtree, folder, True)
+        path = os.path.join(folder, "ball.obj")
+        count = 60000
+        golden = math.pi * (3.0 - math.sqrt(5.0))
+        with open(path, "w") as f:
+            for i in range(count):   # a Fibonacci sphere: evenly spread, all on the hull
+                z = 1.0 - 2.0 * (i + 0.5) / count
+                r = math.sqrt(1.0 - z * z)
+                f.write("v %.6f %.6f %.6f\n" % (0.2 * r * math.cos(golden * i),
+                                                 0.2 * r * math.sin(golden * i), 0.2 * z))
+            for i in range(0, count - 2, 3):
+                f.write("f %d %d %d\n" % (i + 1, i + 2, i + 3))
+        mesh = "<geometry><mesh><uri>file://%s</uri></mesh></geometry>" % path
+        return ("<sdf version='1.6'><model name='ball'><pose>0 0 1 0 0 0</pose><link name='l'>"
+                "<inertial><mass>1</mass></inertial><collision name='c'>%s</collision>"
+                "<visual name='v'>%s</visual></link></model></sdf>" % (mesh, mesh))
 
 
 class OwnSim:

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """rostest node: stop_at_obstacle, started by the .test file with a Burger facing the pillar at
 (-1.1, 0.0) (r 0.15, so its face toward the robot is at x = -1.25): the robot drives, comes to rest
-with the pillar 0.4 to 0.5 m from its laser (ground truth from /odom: base_scan is 0.032 m behind
-base_footprint) and stays at rest; put back at the spawn, it drives on and stops again.
+with the pillar 0.4 to 0.5 m (plus the laser's noise) from its laser (ground truth from /odom:
+base_scan is 0.032 m behind base_footprint) and stays at rest; put back at the spawn, it drives
+on and stops again.
 
 Distances and durations are measured between odometry stamps (sim time).
 """
@@ -19,6 +20,10 @@ PILLAR = (-1.1, 0.0)  # centre, m
 PILLAR_RADIUS = 0.15
 SCAN_BEHIND = 0.032   # m, base_scan behind base_footprint (burger)
 SPEED = 0.15          # stop_at_obstacle.launch's default ~speed
+# The laser's gaussian noise (sigma 0.01 m, as Gazebo's Burger) makes the nearest of the ~30 rays
+# ahead read about 2 sigma short: the node may stop on a reading of 0.50 m when the surface is
+# 0.52 m away (seen once in CI: at rest 0.512 m). 3 sigma over the stop distance is still a stop.
+NOISE_MARGIN = 0.03   # m
 
 
 def pillar_distance(odom) -> float:
@@ -54,7 +59,7 @@ class StopAtObstacleTest(unittest.TestCase):
         distance = pillar_distance(rest)
         rospy.loginfo("at rest %.3f m from the pillar", distance)
         self.assertGreaterEqual(distance, 0.4)
-        self.assertLessEqual(distance, 0.5)
+        self.assertLessEqual(distance, 0.5 + NOISE_MARGIN)
         # It stays there: 3 s of sim time later it has not moved, and every command was zero.
         end = self.later(rest, 3.0)
         a, b = rest.pose.pose.position, end.pose.pose.position

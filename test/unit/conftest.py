@@ -23,3 +23,16 @@ def client():
     cid = pybullet.connect(pybullet.DIRECT)
     yield cid
     pybullet.disconnect(physicsClientId=cid)
+
+
+@pytest.fixture(autouse=True)
+def mesh_cache_home(tmp_path_factory, monkeypatch):
+    """Every test has an empty disk mesh cache of its own (mesh_cache), under a ROS_HOME of its
+    own: no test reads what another wrote, none writes into the user's cache."""
+    from tutorial_turtlebot.sim import mesh_cache
+
+    home = tmp_path_factory.mktemp("ros_home")
+    monkeypatch.setenv("ROS_HOME", str(home))
+    mesh_cache.forget_state()
+    yield home
+    mesh_cache.forget_state()

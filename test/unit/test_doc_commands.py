@@ -80,9 +80,9 @@ def script_source(script):
     module = re.search(r"^from (tutorial_turtlebot[\w.]*) import", read("scripts/" + script), re.M)
     path = os.path.join("src", *module.group(1).split(".")) + ".py"
     text = read(path)
-    siblings = re.findall(r"^from \.(\w+) import", text, re.M)
-    return text + source_text(os.path.join(os.path.dirname(path), name + ".py")
-                              for name in siblings)
+    siblings = re.findall(r"^from \.([\w.]+) import", text, re.M)   # .x and .impl.y
+    files = (os.path.join(os.path.dirname(path), *name.split(".")) + ".py" for name in siblings)
+    return text + source_text(f for f in files if os.path.isfile(os.path.join(ROOT, f)))
 
 
 # --- the commands on the pages ------------------------------------------------------------------

@@ -7,7 +7,7 @@ import struct
 import pytest
 from rospy.exceptions import TransportTerminated
 
-from tutorial_turtlebot.gazebo.nonblocking_publisher import (Backlog, NonBlockingConnection,
+from tutorial_turtlebot.gazebo.impl.nonblocking_publisher import (Backlog, NonBlockingConnection,
                                                       make_nonblocking)
 
 

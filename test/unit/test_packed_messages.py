@@ -16,8 +16,8 @@ from rospy.msg import serialize_message
 from sensor_msgs.msg import Imu, JointState, LaserScan
 from tf2_msgs.msg import TFMessage
 
-from tutorial_turtlebot.gazebo.nonblocking_publisher import Backlog, make_nonblocking
-from tutorial_turtlebot.gazebo.packed_messages import (PackedClock, PackedImu,
+from tutorial_turtlebot.gazebo.impl.nonblocking_publisher import Backlog, make_nonblocking
+from tutorial_turtlebot.gazebo.impl.packed_messages import (PackedClock, PackedImu,
                                                        PackedJointState, PackedLaserScan,
                                                        PackedOdometry, PackedTransform)
 

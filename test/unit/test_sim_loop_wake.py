@@ -8,7 +8,7 @@ import pytest
 
 from tutorial_turtlebot.gazebo import sim_node
 from tutorial_turtlebot.gazebo.loop_requests import LoopRequests
-from tutorial_turtlebot.gazebo.nonblocking_publisher import Backlog
+from tutorial_turtlebot.gazebo.impl.nonblocking_publisher import Backlog
 from tutorial_turtlebot.sim.pacing import MIN_REAL_TIME_FACTOR, Pacer
 
 

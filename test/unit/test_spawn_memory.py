@@ -4,24 +4,16 @@ deleted again and again through WorldControl, with the real pybullet physics. No
 pybullet frees little of a body on removeBody (its collision shapes, and the renderer's copy of
 its visuals, stay): without reuse of deleted bodies RSS grew about 2 KB per box cycle and 20 KB
 per robot cycle without the EGL renderer, 16 and 70 KB with it."""
-import gc
 import os
 
 from tutorial_turtlebot.sim.package_data import data_dir
 from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world_control import WorldControl
 
+from unit_helpers import rss_kb
+
 BOX_CYCLES, ROBOT_CYCLES = 500, 60
 MAX_GROWTH_KB = 400      # per run of cycles, after a warm-up
-
-
-def rss_kb() -> int:
-    gc.collect()
-    with open("/proc/self/status") as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    raise AssertionError("no VmRSS")
 
 
 def growth_kb(cycle, n: int) -> int:

@@ -6,8 +6,9 @@ import time
 
 import pytest
 
-from tutorial_turtlebot.gazebo import tcpros_guard
-from tutorial_turtlebot.gazebo.tcpros_guard import HandshakeGuard, HandshakeRefused, read_header
+from tutorial_turtlebot.gazebo.impl import tcpros_guard
+from tutorial_turtlebot.gazebo.impl.tcpros_guard import (HandshakeGuard, HandshakeRefused,
+                                                       read_header)
 
 
 def encode(fields: dict) -> bytes:

@@ -4,8 +4,8 @@ import socket
 
 import pytest
 
-from tutorial_turtlebot.gazebo import unreachable_publishers
-from tutorial_turtlebot.gazebo.unreachable_publishers import UnreachableLog, describe_error
+from tutorial_turtlebot.gazebo.impl import unreachable_publishers
+from tutorial_turtlebot.gazebo.impl.unreachable_publishers import UnreachableLog, describe_error
 
 from unit_helpers import free_port as closed_port
 
@@ -101,7 +101,7 @@ class FakeMaster:
 def test_master_watch_registers_again_only_with_a_new_master(monkeypatch):
     pytest.importorskip("rospy")
     import rospy.impl.registration as registration
-    from tutorial_turtlebot.gazebo import master_watch
+    from tutorial_turtlebot.gazebo.impl import master_watch
 
     class Registrar:
         added = []
@@ -152,7 +152,7 @@ def test_master_watch_registers_again_only_with_a_new_master(monkeypatch):
 
 def test_master_watch_waits_while_the_master_is_down(monkeypatch):
     pytest.importorskip("rospy")
-    from tutorial_turtlebot.gazebo import master_watch
+    from tutorial_turtlebot.gazebo.impl import master_watch
     monkeypatch.setattr(master_watch, "master_proxy",
                         lambda uri: master_watch.xmlrpc.client.ServerProxy(
                             "http://127.0.0.1:%d/" % closed_port()))

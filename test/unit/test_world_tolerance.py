@@ -172,6 +172,70 @@ def test_the_world_runs_without_what_was_left_out(tmp_path):
         sim.close()
 
 
+# --- 5b. a world saved by Gazebo starts in its saved <state> ---------------------------------
+
+STATE = ('<state world_name="w"><sim_time>116 345000000</sim_time>%s</state>')
+
+
+def saved(name, pose):
+    return ('<model name="%s"><pose frame="">%s</pose><scale>1 1 1</scale>'
+            '<link name="l"><pose frame="">9 9 9 0 0 0</pose></link></model>' % (name, pose))
+
+
+def test_the_saved_state_places_the_models_it_names(tmp_path):
+    (tmp_path / "models" / "sign").mkdir(parents=True)
+    (tmp_path / "models" / "sign" / "model.sdf").write_text(
+        '<sdf version="1.6">%s</sdf>' % model(link(), name="sign", pose="0 0 0 0 0 0"))
+    (tmp_path / "models" / "sign" / "model.config").write_text(
+        '<model><name>sign</name><sdf version="1.6">model.sdf</sdf></model>')
+    body = (model(link(), name="barrier", pose="5 5 0.5 0 0 0")
+            + model(link(), name="wall", pose="-2 0 0.5 0 0 0")
+            + '<include><uri>model://sign</uri><name>sign_2</name><pose>1 1 0 0 0 0</pose>'
+              '</include>'
+            + STATE % (saved("barrier", "1 -1.5 0.15 0 0 1.5") + saved("sign_2", "0 3 0 0 0 0")
+                       + saved("unit_box", "7 7 7 0 0 0")))
+    world = load_world(world_file(tmp_path, body))
+    assert world.models == ("barrier", "wall", "sign_2")       # unit_box is not in the world
+    assert world.model("barrier").pose == (1.0, -1.5, 0.15, 0.0, 0.0, 1.5)
+    assert world.model("wall").pose == (-2.0, 0.0, 0.5, 0.0, 0.0, 0.0)   # not in the state
+    assert world.model("sign_2").pose == (0.0, 3.0, 0.0, 0.0, 0.0, 0.0)
+    box = world.model_shapes("barrier")[0]
+    assert box.pose[:2] == pytest.approx((1.0, -1.5))           # the shapes moved with it
+    assert world.warnings == ()
+
+
+# --- 5c. the fixture worlds made as turtlebot3_gazebo's house and autorace worlds are -------
+
+FIXTURES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "fixtures")
+
+
+@pytest.mark.parametrize("name, models, left_out", [
+    ("house_like", ("ground_plane", "house_like"),
+     ["house_like::Mailbox::link::collision left out: model://mailbox/meshes/mailbox.dae",
+      "house_like::cafe_table::link::visual left out: model://cafe_table/meshes/cafe_table.dae",
+      "house_like::table_marble::link::collision left out: "
+      "model:///table_marble/meshes/table_lightmap.dae",
+      "house_like::table_marble::link::visual left out: "
+      "model://table_marble/meshes/table_lightmap.dae"]),
+    ("autorace_like", ("course", "traffic_stop", "tunnel_wall", "barrier"), []),
+    ("autorace_2020_like", ("course", "traffic_stop", "traffic_stop_2", "tunnel_wall",
+                            "tunnel_obstacle", "barrier_1", "barrier_2"), []),
+])
+def test_the_fixture_worlds_load_unmodified(monkeypatch, name, models, left_out):
+    monkeypatch.setenv("GAZEBO_MODEL_PATH", os.path.join(FIXTURES, "gazebo_models"))
+    world = load_world(os.path.join(FIXTURES, "worlds", name + ".world"))
+    assert world.models == models
+    assert len(world.warnings) == len(left_out)     # one line for each thing left out
+    for warning, start in zip(world.warnings, left_out):
+        assert start in warning and "\n" not in warning
+        assert "github.com/osrf/gazebo_models" in warning      # where to get them
+    if name != "house_like":   # the saved state moved the barrier 1 m ahead of the spawn
+        barrier = "barrier" if name == "autorace_like" else "barrier_1"
+        assert world.model(barrier).pose[:2] == (1.0, -1.5)
+    else:                      # the bookshelf, nested in the static house, is static too
+        assert world.model("house_like").static
+
+
 # --- 6. real garbage is still refused ---------------------------------------------------------
 
 def test_a_mesh_that_is_no_regular_file_is_still_refused(tmp_path):

@@ -3,6 +3,7 @@ beside this file). Tests import it by name, ``from unit_helpers import at, run``
 __init__.py in test/unit, so pytest puts this folder first on sys.path for every test file it
 collects here, whether it runs the folder or one file. The package is imported where it is
 used: a module of it that fails to import fails only the tests that need it."""
+import gc
 import math
 import os
 import socket
@@ -139,3 +140,13 @@ def world_fault(path):
     message = str(err.value)
     assert "\n" not in message and path in message
     return message
+
+
+def rss_kb() -> int:
+    """This process's resident memory (KB), after a garbage collection."""
+    gc.collect()
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1])
+    raise AssertionError("no VmRSS")

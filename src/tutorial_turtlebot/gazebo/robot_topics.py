@@ -26,7 +26,7 @@ from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_srvs.srv import Empty, EmptyResponse
 
 from .camera_publisher import CameraPublisher
-from .packed_messages import (PackedImu, PackedJointState, PackedLaserScan, PackedOdometry,
+from .impl.packed_messages import (PackedImu, PackedJointState, PackedLaserScan, PackedOdometry,
                               PackedTransform)
 from .part_times import TIMES
 

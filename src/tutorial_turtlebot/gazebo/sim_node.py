@@ -57,15 +57,15 @@ from tf2_msgs.msg import TFMessage
 from rospy.rostime import _set_rostime
 from std_srvs.srv import Empty, EmptyResponse
 
-from . import tcpros_guard, unreachable_publishers
+from .impl import tcpros_guard, unreachable_publishers
 from .loop_requests import ANSWER_TIMEOUT, LoopRequests, NotAnswered
-from .master_watch import MasterWatch
+from .impl.master_watch import MasterWatch
 from .world_api import WorldApi
 from ..errors import UserError, one_line
 from ..node_output import line_buffered
 from ..sim.kinematics import yaw_from_quat
-from .nonblocking_publisher import Backlog, make_nonblocking
-from .packed_messages import PackedClock
+from .impl.nonblocking_publisher import Backlog, make_nonblocking
+from .impl.packed_messages import PackedClock
 from . import part_times
 from .part_times import TIMES
 from ..sim.pacing import Pacer, check_rtf

@@ -4,6 +4,8 @@
 - ``enable_egl`` / ``disable_egl``: pybullet's EGL renderer plugin (Mesa or a GPU), loaded right
   after ``pybullet.connect`` and before any body exists; ``CameraRenderer`` falls back to
   pybullet's TinyRenderer (CPU) where it does not load.
+- ``note_textures`` / ``texture_budget``: what the builders of textured visuals tell the camera
+  of a client (textures change the OpenGL shader; their pixels are bounded per client).
 - ``CameraRenderer.render``: the RGB image and the depth image of a camera whose optical frame
   (z forward, x right, y down) has a given world pose.
 - ``depth_image``, ``pointcloud_xyz``, ``pointcloud_bytes``, ``jpeg_bytes``: the payloads of the
@@ -159,6 +161,14 @@ sys.exit(0 if g > 100 and r < 60 and b < 60 else 4)
 
 _egl_works: Optional[bool] = None     # the probe's answer, once per process
 _egl_plugins: Dict[int, int] = {}     # client id -> plugin id
+_textured_clients = set()             # client ids with a textured visual (note_textures)
+# Texture pixels that the visuals of one client may use (texture_budget): TinyRenderer keeps a
+# decoded copy of a texture for every visual shape that uses it (measured: 14 MB per visual of
+# a 2048 x 2048 image), so a world of many textured parts would fill the memory. 64 M px:
+# about 220 MB with TinyRenderer.
+MAX_TEXTURE_PIXELS = 64 * 1024 * 1024
+_texture_pixels: Dict[int, int] = {}  # client id -> pixels taken
+_texture_refused = set()              # client ids that texture_budget has said False to
 
 
 def egl_plugin_path() -> Optional[str]:
@@ -215,13 +225,42 @@ def enable_egl(client_id: int) -> bool:
 
 
 def disable_egl(client_id: int) -> None:
-    """Unload the EGL plugin of ``client_id`` (before ``pybullet.disconnect``); no-op without."""
+    """Unload the EGL plugin of ``client_id`` (before ``pybullet.disconnect``); no-op without.
+    Also forgets ``note_textures`` and ``texture_budget`` of that client (its id may be
+    reused)."""
+    _textured_clients.discard(client_id)
+    _texture_pixels.pop(client_id, None)
+    _texture_refused.discard(client_id)
     plugin = _egl_plugins.pop(client_id, None)
     if plugin is not None:
         try:
             pybullet.unloadPlugin(plugin, physicsClientId=client_id)
         except pybullet.error:
             pass    # the client is already gone, and the plugin with it
+
+
+def note_textures(client_id: int) -> None:
+    """Say that client ``client_id`` has (or may have) a textured visual: its OpenGL images
+    are drawn by the shader that maps textures by their coordinates from then on (see
+    CameraRenderer). Until ``disable_egl`` of that client."""
+    _textured_clients.add(client_id)
+
+
+def texture_budget(client_id: int, pixels: int) -> bool:
+    """Take ``pixels`` texture pixels for a new textured visual of client ``client_id``; False
+    (nothing taken) when that would pass MAX_TEXTURE_PIXELS: draw it untextured. Until
+    ``disable_egl`` of that client."""
+    used = _texture_pixels.get(client_id, 0)
+    if used + pixels > MAX_TEXTURE_PIXELS:
+        _texture_refused.add(client_id)
+        return False
+    _texture_pixels[client_id] = used + pixels
+    return True
+
+
+def texture_budget_refused(client_id: int) -> bool:
+    """Whether ``texture_budget`` has said False to ``client_id`` (since ``disable_egl``)."""
+    return client_id in _texture_refused
 
 
 def egl_enabled(client_id: int) -> bool:
@@ -258,8 +297,11 @@ class CameraRenderer:
                  background: Tuple[int, int, int] = BACKGROUND_RGB, skip_shadows: bool = True):
         """``skip_shadows`` (OpenGL only): draw through pybullet's projective-texture shader,
         which has no shadow-map pass: 2 to 10 times faster on Mesa, and no shadow artefacts. It
-        would map a body's texture as projected from the camera; the worlds here have none (pass
-        False once a world has textures)."""
+        maps every texture as projected from the camera, not by its coordinates (measured: a
+        textured face comes out in one texel's colour), so it is used only while no textured
+        visual is in the client (``note_textures``); then the usual shader draws, with
+        ``shadow=0`` (measured, Mesa, 640 x 480 in turtlebot3_world: 35 ms an image instead of
+        12). TinyRenderer maps textures by their coordinates either way."""
         validate_spec(spec)
         self.client = client_id
         self.spec = spec
@@ -320,7 +362,7 @@ class CameraRenderer:
         width, height = c1 - c0, r1 - r0
         flags = pybullet.ER_NO_SEGMENTATION_MASK
         extra = {}
-        if self._projective:
+        if self._projective and self.client not in _textured_clients:
             flags |= pybullet.ER_USE_PROJECTIVE_TEXTURE
             extra = {"projectiveTextureView": view, "projectiveTextureProj": projection}
         _, _, rgba, zbuffer, _ = pybullet.getCameraImage(

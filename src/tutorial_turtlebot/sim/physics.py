@@ -16,12 +16,12 @@ from xml.etree import ElementTree
 
 import numpy as np
 
-from . import gui_window
+from . import bullet_shapes, gui_window
 from .bullet import pybullet, quiet_output
 from .kinematics import Pose
-from .camera import disable_egl, enable_egl
+from .camera import disable_egl, enable_egl, note_textures
 from .urdf_file import RobotDescription
-from .urdf_meshes import bullet_meshes, urdf_text
+from .urdf_meshes import bullet_meshes, textured_urdf, urdf_text
 from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP, body_pool, build_world
 from .world_sdf import World
 from ..errors import UserError
@@ -82,6 +82,7 @@ class WorldPhysics:
         if self.client < 0:
             raise RuntimeError("pybullet could not open its window")
         cid = self.client
+        bullet_shapes.track(cid)
         self.gui = gui
         self.egl = False
         if egl and not gui:  # before any body: the plugin draws only bodies created after it
@@ -89,8 +90,10 @@ class WorldPhysics:
                 self.egl = enable_egl(cid)
         pybullet.setTimeStep(time_step, physicsClientId=cid)
         pybullet.setGravity(0, 0, -GRAVITY, physicsClientId=cid)
+        # enableFileCaching 0: pybullet would keep every mesh file it ever read, for good (the
+        # files written here are new for each body: nothing would be read from that cache)
         pybullet.setPhysicsEngineParameter(numSolverIterations=solver_iterations,
-                                           physicsClientId=cid)
+                                           enableFileCaching=0, physicsClientId=cid)
         self.world_bodies = build_world(world, cid)
         self._free_bits: List[int] = [1 << (FIRST_ROBOT_BIT + i) for i in range(MAX_ROBOTS)]
         # threads pybullet casts a batch of rays on: the hits are the same for any count; 2
@@ -128,6 +131,7 @@ class WorldPhysics:
             with quiet_output():  # the window's threads say goodbye on fd 1 and 2
                 disable_egl(self.client)  # client ids are reused after a disconnect
                 pybullet.disconnect(physicsClientId=self.client)
+            bullet_shapes.forget_client(self.client)
             self.client = None
 
 
@@ -187,6 +191,8 @@ class RobotBody:
             finally:
                 os.unlink(tmp)
             pool.remember([robot])
+            if textured_urdf(self._bullet_urdf):   # its camera images draw textures
+                note_textures(cid)
         for link in range(-1, pybullet.getNumJoints(robot, physicsClientId=cid)):
             pybullet.setCollisionFilterGroupMask(robot, link, self.collision_bit,
                                                  ALL_COLLISION_GROUPS, physicsClientId=cid)

@@ -23,6 +23,7 @@ from .physics import GRAVITY, RobotBody, WorldPhysics
 from .robot_plugins import CameraSensor, LaserSensor, RobotPlugins
 from .schedule import NS_PER_S, RateSchedule
 from .urdf_file import RobotDescription
+from .urdf_meshes import texture_warnings
 from .wheel_odometry import WheelOdometry
 from ..errors import UserError
 
@@ -141,6 +142,7 @@ class SimRobot:
         self.body = RobotBody(physics, description, spawn_pose,
                               (drive.left_joint, drive.right_joint) if drive else (),
                               drive.wheel_torque if drive else 0.0)
+        self.warnings += texture_warnings(description)   # textures drawn as plain colours
         try:   # a robot that cannot be completed leaves no body behind
             self._set_up(physics, now_ns, seed)
         except BaseException:

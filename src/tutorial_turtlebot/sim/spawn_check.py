@@ -95,13 +95,22 @@ def find_obstacle(world: World, x: float, y: float, footprint_radius: float, z: 
     band = (z + FLOOR_CLEARANCE, z + height)
     best = None
     for shape in world.collisions:
-        if shape.kind == "plane":
+        if shape.kind == "plane" or _mesh_farther(shape, x, y, footprint_radius):
             continue
         distance = plan_distance(shape, x, y, band)
         if distance is not None and distance < footprint_radius:
             if best is None or distance < best[1]:
                 best = (shape, distance)
     return best
+
+
+def _mesh_farther(shape: Shape, x: float, y: float, radius: float) -> bool:
+    """Whether a mesh shape lies wholly farther than ``radius`` (m) from (x, y) in plan: its
+    vertices' sphere around the mesh frame's origin does (a cheap test before the exact one)."""
+    if shape.kind != "mesh":
+        return False
+    reach = float(np.sqrt((load_mesh(shape.mesh, shape.size).vertices ** 2).sum(axis=1).max()))
+    return math.hypot(shape.pose[0] - x, shape.pose[1] - y) - reach >= radius
 
 
 def plan_distance(shape: Shape, x: float, y: float, band: Tuple[float, float]) -> Optional[float]:

@@ -6,8 +6,10 @@ applied, its up axis not; the URDF ``scale`` applied) and the URDF that pybullet
 Wavefront files instead, in metres:
 
 - a mesh ``<visual>`` becomes one ``<visual>`` per colour part of the mesh, each in the URDF
-  ``<material>``'s colour where the visual has one (it overrides the mesh's own colours, as in
-  Gazebo), else in the part's colour from the file (none: pybullet's default);
+  ``<material>``'s colour where the visual has one (it overrides the mesh's own colours and
+  textures), else in the part's colour from the file (none: pybullet's default) and with its
+  texture where it has one (mesh_file.write_obj_parts; a texture that cannot be used leaves
+  the part in its colour). ``textured_urdf`` tells whether a URDF text names such a file;
 - a mesh ``<collision>`` becomes one file of the mesh's convex hull: pybullet collides a moving
   body's mesh as its convex hull (Gazebo's ODE collides with the triangles themselves).
 
@@ -41,6 +43,7 @@ MAX_CONVERTED = 256   # (mesh file, scale) pairs whose files are kept, of each k
 _cache_dir: Optional[str] = None
 _visual_parts: "OrderedDict[tuple, List[Tuple[str, Optional[Rgba]]]]" = OrderedDict()
 _hulls: "OrderedDict[tuple, str]" = OrderedDict()
+_textured: set = set()    # the files of _visual_parts that are textured
 
 
 def _kept(cache: OrderedDict, key: tuple, value, files: Sequence[str]) -> None:
@@ -50,6 +53,7 @@ def _kept(cache: OrderedDict, key: tuple, value, files: Sequence[str]) -> None:
     while len(cache) > MAX_CONVERTED:
         _, old = cache.popitem(last=False)
         for path in ([p for p, _ in old] if isinstance(old, list) else [old]):
+            _textured.discard(path)
             try:
                 os.unlink(path)
             except OSError:
@@ -64,6 +68,7 @@ def _folder() -> str:
         _cache_dir = tempfile.mkdtemp(prefix="%s%d_" % (CACHE_PREFIX, os.getpid()))
         _visual_parts.clear()
         _hulls.clear()
+        _textured.clear()
         atexit.register(shutil.rmtree, _cache_dir, True)
     return _cache_dir
 
@@ -94,19 +99,29 @@ def _key(path: str, scale: Sequence[float]) -> tuple:
     return (os.path.realpath(path), stat.st_mtime_ns, stat.st_size, tuple(scale))
 
 
-def visual_parts(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)
+def visual_parts(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0), textures: bool = True
                  ) -> List[Tuple[str, Optional[Rgba]]]:
     """[(Wavefront file, the part's rgba or None)] of the mesh file ``path`` times ``scale``:
-    one file per colour part, in metres. MeshError (one line) for a bad file."""
+    one file per colour part, in metres, textured where the part has a usable texture and
+    ``textures`` is true. MeshError (one line) for a bad file."""
     mesh = load_mesh(path, scale)
-    key = _key(path, scale)
+    key = _key(path, scale) + (bool(textures),)
     folder = _folder()
     if key in _visual_parts:
         _visual_parts.move_to_end(key)
     else:
-        parts = write_obj_parts(mesh, folder)
+        parts = write_obj_parts(mesh, folder, textures=textures)
+        if textures:
+            _textured.update(obj for (obj, _), part in zip(parts, mesh.parts)
+                             if part.texture is not None)
         _kept(_visual_parts, key, parts, [path for path, _ in parts])
     return _visual_parts[key]
+
+
+def textured_urdf(urdf: str) -> bool:
+    """Whether the URDF text ``urdf`` (of bullet_urdf_text) names a textured file of
+    visual_parts: its client's camera must then draw textures (camera.note_textures)."""
+    return any(path in urdf for path in _textured)
 
 
 def hull_file(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> str:
@@ -168,8 +183,8 @@ def _link_meshes(link: ElementTree.Element, colours: Dict[str, bool], base_dir: 
         if mesh is None:
             continue
         path = resolve_uri(mesh.get("filename", ""), base_dir)
-        parts = visual_parts(path, _scale(mesh))
         override = _has_colour(visual.find("material"), colours)
+        parts = visual_parts(path, _scale(mesh), textures=not override)
         index = list(link).index(visual)
         link.remove(visual)
         for part, (obj, rgba) in enumerate(parts):
@@ -251,6 +266,24 @@ def mesh_triangles(description) -> Tuple[int, int]:
     return triangles, hull_vertices
 
 
+def texture_warnings(description) -> List[str]:
+    """One line for each texture of a ``urdf_file.RobotDescription``'s visual meshes that is
+    not drawn (mesh_file's ``texture_problem``: its part is drawn in its colour)."""
+    lines: List[str] = []
+    for link in description.links.values():
+        for shape in link.visuals:
+            geometry = shape.geometry
+            if geometry.shape != "mesh":
+                continue
+            try:
+                parts = load_mesh(geometry.filename, geometry.size).parts
+            except UserError:
+                continue                   # refused where the mesh is converted
+            lines += [p.texture_problem for p in parts
+                      if p.texture_problem and p.texture_problem not in lines]
+    return lines
+
+
 def absolute_meshes(robot: ElementTree.Element, known: Dict[str, str]) -> ElementTree.Element:
     """A copy of the parsed URDF ``<robot>`` whose every ``<mesh filename>`` is the absolute
     path ``known`` gives it (``mesh_paths`` of its description), for a copy written
@@ -277,3 +310,4 @@ def cache_clear() -> None:
     _cache_dir = None
     _visual_parts.clear()
     _hulls.clear()
+    _textured.clear()

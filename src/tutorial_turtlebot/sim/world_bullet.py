@@ -9,21 +9,26 @@ Models that are not ``<static>``: every link becomes one movable rigid body of t
 mesh) and its collisions' friction; a mesh collides as its convex hull (Bullet's moving bodies
 are convex). Its frame is the link's centre of mass (see ``link_com_pose``).
 Mesh visuals are drawn part by part, each in its SDF ``<material>`` colour, or where the visual
-has none, in the mesh file's own colour of that part.
+has none, in the mesh file's own colour of that part, and with its texture where it has one
+(mesh_file.write_obj_parts; a texture that cannot be used leaves the part in its colour, else
+grey). A visual with an SDF ``<material>`` is drawn in that colour alone, textures left out.
 
 Units: metres; poses in the world frame (z up), as in world_sdf.
 """
 import os
+import sys
 import tempfile
 from collections import OrderedDict
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from . import bullet_shapes, mesh_cache
 from .bullet import pybullet
+from .camera import MAX_TEXTURE_PIXELS, note_textures, texture_budget, texture_budget_refused
 from ..errors import WorldError
 from .kinematics import pose_from_xyz_rpy, quat_from_matrix
-from .mesh_file import Mesh, MeshPart, load_mesh, write_obj_parts
+from .mesh_file import Mesh, MeshPart, load_mesh, texture_pixels, write_obj_parts
 from .world_sdf import Inertial, Link, Shape, World
 
 # World bodies are in collision group 4. A laser that must see the world only casts rays with
@@ -59,7 +64,18 @@ def build_world(world: World, client_id: int) -> Dict[str, int]:
     a static model (a polyline that is not convex is one body whose extra pieces are links of
     that body), and for every shape of a movable link (all of one link's shapes share its body).
     """
-    bodies = {}
+    bodies: Dict[str, int] = {}
+    try:
+        _build(world, client_id, bodies)
+    except BaseException:   # a spawn that cannot be built leaves no body behind
+        for body in set(bodies.values()):
+            pybullet.removeBody(body, physicsClientId=client_id)
+        raise
+    return bodies
+
+
+def _build(world: World, client_id: int, bodies: Dict[str, int]) -> None:
+    """build_world's work: each body into ``bodies`` as soon as it exists."""
     movable: Dict[str, List[Shape]] = {}
     # Box, plane and polyline visuals are mesh files, read when their body is created.
     with tempfile.TemporaryDirectory(prefix="tutorial_turtlebot_meshes_") as mesh_dir:
@@ -77,7 +93,6 @@ def build_world(world: World, client_id: int) -> Dict[str, int]:
         for scoped, shapes in movable.items():
             body = _movable_body(links[scoped], shapes, client_id, mesh_dir)
             bodies.update((shape.name, body) for shape in shapes)
-    return bodies
 
 
 def link_com_pose(link: Link):
@@ -120,9 +135,8 @@ def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> i
                              "models are made of %s)" % (s.name, s.kind, ", ".join(MOVABLE_KINDS)))
     col = -1
     if collisions:
-        col = pybullet.createCollisionShapeArray(
-            **_shape_arrays(collisions, to_com, cid, mesh_dir, visual=False),
-            physicsClientId=cid)
+        col = bullet_shapes.collision_shape_array(
+            cid, **_shape_arrays(collisions, to_com, cid, mesh_dir, visual=False))
     vis = -1
     if visuals:
         vis = pybullet.createVisualShapeArray(
@@ -171,7 +185,8 @@ def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: 
             mesh = load_mesh(s.mesh, s.size)
             if not visual:   # one file of every triangle: pybullet collides with its hull
                 mesh = Mesh(mesh.path, mesh.vertices, (MeshPart(mesh.faces, None),))
-            for path, rgba in write_obj_parts(mesh, mesh_dir):
+            for path, rgba in _visual_files(s, mesh, cid, mesh_dir) if visual else \
+                    write_obj_parts(mesh, mesh_dir):
                 add(pybullet.GEOM_MESH, pose, _part_colour(s, rgba), mesh=path)
         elif s.kind == "box":
             half = [v / 2 for v in s.size]
@@ -186,6 +201,25 @@ def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: 
         else:
             add(pybullet.GEOM_SPHERE, pose, s.rgba, radius=s.size[0])
     return args
+
+
+def _visual_files(shape: Shape, mesh: Mesh, cid: int, mesh_dir: str):
+    """write_obj_parts of a visual mesh: with its textures where the file's own colours are
+    drawn (no SDF <material>) and the client's texture budget (camera.texture_budget) allows;
+    tells the camera when the client gets a texture."""
+    textured = shape.mesh_colours and any(p.texture is not None for p in mesh.parts)
+    if textured:
+        pixels = sum(texture_pixels(p.texture) for p in mesh.parts if p.texture is not None)
+        first = not texture_budget_refused(cid)
+        textured = texture_budget(cid, pixels)
+        if not textured and first:
+            sys.stderr.write("tutorial_turtlebot: %s: more than %d texture pixels in this "
+                             "simulation; the textured meshes past them are drawn in their "
+                             "colours\n" % (shape.name, MAX_TEXTURE_PIXELS))
+    if textured:
+        note_textures(cid)
+    # written once for this content, kept in the mesh cache (mesh_cache.obj_parts)
+    return mesh_cache.visual_obj_parts(mesh, mesh_dir, textured)
 
 
 def _part_colour(shape: Shape, rgba) -> Tuple[float, float, float, float]:
@@ -208,7 +242,8 @@ def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
         linkInertialFramePositions=[(0, 0, 0)] * len(links),
         linkInertialFrameOrientations=[(0, 0, 0, 1)] * len(links),
         linkParentIndices=[0] * len(links), linkJointTypes=[pybullet.JOINT_FIXED] * len(links),
-        linkJointAxis=[(0, 0, 1)] * len(links), physicsClientId=cid)
+        linkJointAxis=[(0, 0, 1)] * len(links),
+        useMaximalCoordinates=_static_rigid(shape, collide, links), physicsClientId=cid)
     if body < 0:
         raise WorldError("%s: pybullet could not build %s" % (shape.name, shape.kind))
     for link in range(-1, len(links)) if collide else ():
@@ -216,7 +251,22 @@ def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
                                              WORLD_COLLISION_MASK, physicsClientId=cid)
         pybullet.changeDynamics(body, link, lateralFriction=WORLD_FRICTION,
                                 restitution=WORLD_RESTITUTION, physicsClientId=cid)
+    if _static_rigid(shape, collide, links):   # asleep: Bullet skips its bounds every step
+        pybullet.changeDynamics(body, -1, activationState=(
+            pybullet.ACTIVATION_STATE_ENABLE_SLEEPING | pybullet.ACTIVATION_STATE_SLEEP),
+            physicsClientId=cid)
     return body
+
+
+def _static_rigid(shape: Shape, collide: bool, links: list) -> bool:
+    """Whether a fixed body is made a plain static rigid body (pybullet's maximal coordinates)
+    rather than a multibody: a static mesh collision of one piece, made asleep too. Bullet
+    updates every multibody every step, fixed or not, and the bounds of every static body that
+    is awake: the 169 mesh models of bench/mesh_world.py cost 2.7 times turtlebot3_world's
+    physics CPU per sim second as multibodies, 1.9 times as static rigid bodies, about 1.3
+    times asleep (a body still collides asleep and moves when set). Primitive shapes stay
+    multibodies (turtlebot3_world's contacts, and so its robot's path, stay as they were)."""
+    return shape.kind == "mesh" and collide and not links
 
 
 def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[int, int]]:
@@ -243,7 +293,7 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
             col_args = {"halfExtents": [max(s, PLANE_MIN_EXTENT) / 2 for s in shape.size]
                         + [half[2]], "collisionFramePosition": (0, 0, -half[2])}
             z_range = (-PLANE_THICKNESS, 0.0)
-        col = (pybullet.createCollisionShape(pybullet.GEOM_BOX, physicsClientId=cid, **col_args)
+        col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_BOX, **col_args)
                if collide else -1)
         hx, hy = half[0], half[1]
         rectangle = [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)]
@@ -254,7 +304,7 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
         vis_args = {"radius": shape.size[0], "length": shape.size[1]}
     else:
         col_args = vis_args = {"radius": shape.size[0]}
-    col = pybullet.createCollisionShape(kind, physicsClientId=cid, **col_args) if collide else -1
+    col = bullet_shapes.collision_shape(cid, kind, **col_args) if collide else -1
     vis = pybullet.createVisualShape(kind, rgbaColor=rgba, physicsClientId=cid, **vis_args)
     return [(col, vis)]
 
@@ -277,14 +327,13 @@ def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str,
         for start in range(0, len(faces), TRIMESH_CHUNK):
             chunk = faces[start:start + TRIMESH_CHUNK]
             used, local = np.unique(chunk, return_inverse=True)
-            collisions.append(pybullet.createCollisionShape(
-                pybullet.GEOM_MESH, vertices=mesh.vertices[used].tolist(),
-                indices=local.reshape(-1).tolist(), flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH,
-                physicsClientId=cid))
+            collisions.append(bullet_shapes.collision_shape(
+                cid, pybullet.GEOM_MESH, vertices=mesh.vertices[used].tolist(),
+                indices=local.reshape(-1).tolist(), flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH))
     visuals = [pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
                                           rgbaColor=_part_colour(shape, rgba),
                                           physicsClientId=cid)
-               for path, rgba in write_obj_parts(mesh, mesh_dir)]
+               for path, rgba in _visual_files(shape, mesh, cid, mesh_dir)]
     count = max(len(collisions), len(visuals))
     collisions += [-1] * (count - len(collisions))
     visuals += [-1] * (count - len(visuals))
@@ -297,8 +346,8 @@ def _prism(polygon: Sequence[Point], height: float, rgba, cid: int, mesh_dir: st
     shape (pybullet inflates it by its 1 mm collision margin) and a flat-shaded visual mesh of the
     same solid."""
     corners = [(x, y, z) for z in (0.0, height) for x, y in polygon]
-    col = (pybullet.createCollisionShape(pybullet.GEOM_MESH, vertices=corners,
-                                         physicsClientId=cid) if collide else -1)
+    col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_MESH, vertices=corners)
+           if collide else -1)
     return col, _mesh_visual(polygon, 0.0, height, rgba, cid, mesh_dir)
 
 

@@ -19,8 +19,10 @@ import numpy as np
 from ..errors import UserError
 from .bullet import pybullet, quiet_output
 from .applied_forces import EffortJob, WrenchJob
+from .bullet_shapes import ShapeBudgetError
+from .camera import note_textures
 from .kinematics import rotation_matrix
-from .urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths, urdf_text
+from .urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths, textured_urdf, urdf_text
 from . import limits
 from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
@@ -277,7 +279,10 @@ class WorldControl:
                 bodies = reused_world_bodies(request.world, reused)
                 place_world_bodies(request.world, bodies, cid)
             else:
-                bodies = build_world(request.world, cid)
+                try:
+                    bodies = build_world(request.world, cid)
+                except ShapeBudgetError as err:
+                    raise RequestError("SpawnModel: Failure - %s" % err) from None
                 pool.remember(list(bodies.values()))
             model = models_of_world(request.world, bodies, cid, source="spawned")[0]
             built = list(dict.fromkeys(bodies.values()))
@@ -339,6 +344,8 @@ class WorldControl:
     @staticmethod
     def _new_urdf_body(urdf: str, cid: int) -> int:
         """A new pybullet body of URDF text ``urdf`` (as bullet_urdf_text writes it)."""
+        if textured_urdf(urdf):   # the cameras of this client draw textures from now on
+            note_textures(cid)
         fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_spawn_")
         try:
             with os.fdopen(fd, "w") as f:

@@ -52,19 +52,72 @@ MAX_WORLD_SHAPES = 100_000   # collisions and visuals
 MAX_INCLUDES = 10_000
 DEFAULT_RGBA: Rgba = (0.7, 0.7, 0.7, 1.0)   # a visual without material: Gazebo's light grey
 
-# Diffuse colours of the Gazebo/<Name> materials (gazebo.material) these worlds and common ones use.
+# The colour of each common Gazebo/<Name> material of Gazebo 11's gazebo.material: its diffuse
+# colour; for a textured one the mean colour of its texture (approximate); a few whose look
+# comes from their ambient term (SkyBlue) take that. Transparent and glowing ones are drawn
+# opaque. A name not here is drawn grey (DEFAULT_RGBA).
 GAZEBO_MATERIALS: Dict[str, Rgba] = {
     "Gazebo/White": (1.0, 1.0, 1.0, 1.0),
     "Gazebo/Grey": (0.7, 0.7, 0.7, 1.0),
+    "Gazebo/Gray": (0.7, 0.7, 0.7, 1.0),
     "Gazebo/DarkGrey": (0.175, 0.175, 0.175, 1.0),
+    "Gazebo/DarkGray": (0.175, 0.175, 0.175, 1.0),
     "Gazebo/FlatBlack": (0.1, 0.1, 0.1, 1.0),
     "Gazebo/Black": (0.0, 0.0, 0.0, 1.0),
     "Gazebo/Red": (1.0, 0.0, 0.0, 1.0),
+    "Gazebo/RedBright": (0.87, 0.26, 0.07, 1.0),
     "Gazebo/Green": (0.0, 1.0, 0.0, 1.0),
     "Gazebo/Blue": (0.0, 0.0, 1.0, 1.0),
+    "Gazebo/SkyBlue": (0.13, 0.44, 0.70, 1.0),
     "Gazebo/Yellow": (1.0, 1.0, 0.0, 1.0),
+    "Gazebo/ZincYellow": (0.9725, 0.9529, 0.2078, 1.0),
+    "Gazebo/DarkYellow": (0.7, 0.7, 0.0, 1.0),
+    "Gazebo/Purple": (1.0, 0.0, 1.0, 1.0),
+    "Gazebo/Turquoise": (0.0, 1.0, 1.0, 1.0),
     "Gazebo/Orange": (1.0, 0.5088, 0.0468, 1.0),
-    "Gazebo/Wood": (0.62, 0.45, 0.28, 1.0),   # a texture in Gazebo; its mean colour here
+    "Gazebo/Indigo": (0.33, 0.0, 0.5, 1.0),
+    "Gazebo/Gold": (0.8, 0.4974, 0.0071, 1.0),
+    "Gazebo/Chrome": (0.7, 0.7, 0.72, 1.0),
+    "Gazebo/WhiteGlow": (1.0, 1.0, 1.0, 1.0),
+    "Gazebo/RedGlow": (1.0, 0.0, 0.0, 1.0),
+    "Gazebo/GreenGlow": (0.0, 1.0, 0.0, 1.0),
+    "Gazebo/BlueGlow": (0.0, 0.0, 1.0, 1.0),
+    "Gazebo/YellowGlow": (1.0, 1.0, 0.0, 1.0),
+    "Gazebo/PurpleGlow": (1.0, 0.0, 1.0, 1.0),
+    "Gazebo/TurquoiseGlow": (0.0, 1.0, 1.0, 1.0),
+    "Gazebo/BlueLaser": (0.0, 0.0, 1.0, 1.0),
+    "Gazebo/RedTransparent": (1.0, 0.0, 0.0, 1.0),
+    "Gazebo/GreenTransparent": (0.0, 1.0, 0.0, 1.0),
+    "Gazebo/BlueTransparent": (0.0, 0.0, 1.0, 1.0),
+    "Gazebo/YellowTransparent": (1.0, 1.0, 0.0, 1.0),
+    "Gazebo/OrangeTransparent": (1.0, 0.44, 0.0, 1.0),
+    "Gazebo/GreyTransparent": (0.5, 0.5, 0.5, 1.0),
+    "Gazebo/BlackTransparent": (0.0, 0.0, 0.0, 1.0),
+    "Gazebo/DarkMagentaTransparent": (0.6, 0.0, 0.6, 1.0),
+    "Gazebo/Shadow": (0.2, 0.2, 0.2, 1.0),          # a see-through dark grey in Gazebo
+    # textured: the mean colour of the texture
+    "Gazebo/Wood": (0.62, 0.45, 0.28, 1.0),
+    "Gazebo/WoodFloor": (0.55, 0.38, 0.22, 1.0),
+    "Gazebo/WoodPallet": (0.66, 0.53, 0.37, 1.0),
+    "Gazebo/LightWood": (0.80, 0.66, 0.47, 1.0),
+    "Gazebo/Bricks": (0.58, 0.33, 0.26, 1.0),
+    "Gazebo/CeilingTiled": (0.80, 0.80, 0.78, 1.0),
+    "Gazebo/PaintedWall": (0.85, 0.83, 0.78, 1.0),
+    "Gazebo/Rockwall": (0.45, 0.42, 0.38, 1.0),
+    "Gazebo/Grass": (0.33, 0.47, 0.20, 1.0),
+    "Gazebo/Leaf": (0.24, 0.40, 0.12, 1.0),
+    "Gazebo/Trunk": (0.35, 0.35, 0.35, 1.0),         # the road texture of OSM trunk roads
+    "Gazebo/Road": (0.35, 0.35, 0.35, 1.0),
+    "Gazebo/Asphalt": (0.30, 0.30, 0.30, 1.0),
+    "Gazebo/Residential": (0.38, 0.38, 0.38, 1.0),
+    "Gazebo/Tertiary": (0.38, 0.38, 0.38, 1.0),
+    "Gazebo/Secondary": (0.38, 0.38, 0.38, 1.0),
+    "Gazebo/Primary": (0.35, 0.35, 0.35, 1.0),
+    "Gazebo/Motorway": (0.33, 0.33, 0.33, 1.0),
+    "Gazebo/Footway": (0.60, 0.58, 0.55, 1.0),
+    "Gazebo/Pedestrian": (0.60, 0.58, 0.55, 1.0),
+    "Gazebo/Lanes": (0.35, 0.35, 0.35, 1.0),
+    "Gazebo/CloudySky": (0.62, 0.70, 0.82, 1.0),
 }
 
 # World elements that carry geometry this loader cannot build.
@@ -360,7 +413,10 @@ class _Loader(XmlReader):
     def models_of(self, world: Element, name: str, parent: XyzRpy = ZERO_XYZ_RPY) -> World:
         """The World made of ``world``'s top-level models and includes, placed in ``parent``."""
         models: List[Model] = []
+        saved = _saved_poses(world)
         for node in world.children:
+            if node.tag in ("model", "include"):
+                node = _with_saved_pose(node, saved)
             if node.tag == "model":
                 models.append(self.top_model(node, parent))
             elif node.tag == "include":
@@ -573,6 +629,8 @@ class _Loader(XmlReader):
         rgba = DEFAULT_RGBA if collision else self.colour(node.child("material"))
         mu = self.friction(node) if collision else 1.0
         mesh_colours = geo.tag == "mesh" and not collision and node.child("material") is None
+        if mesh_colours:
+            self.texture_warnings(geo, mesh, size)
         return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu,
                      mesh=mesh if geo.tag == "mesh" else "", mesh_colours=mesh_colours)
 
@@ -604,6 +662,15 @@ class _Loader(XmlReader):
         except UserError as err:
             self.fail_bare(uri_node, str(err))
         return scale, path
+
+    def texture_warnings(self, geo: Element, path: str, scale) -> None:
+        """A warning (once per line) for each texture of the drawn mesh ``path`` that is not
+        used: its part is drawn in its colour."""
+        from .mesh_file import load_mesh
+        for part in load_mesh(path, scale).parts:
+            problem = part.texture_problem
+            if problem and not any(w.endswith(problem) for w in self.warnings):
+                self.warn(geo.child("uri"), problem)
 
     def polygon(self, polyline: Element) -> Tuple[Tuple[float, float], ...]:
         points = [self.floats(p, 2) for p in polyline.all("point")]
@@ -662,6 +729,36 @@ class _Loader(XmlReader):
         return out
 
 
+def _saved_poses(world: Element) -> Dict[str, Element]:
+    """The ``<pose>`` of each model in the world's first ``<state>`` (a world saved by Gazebo),
+    by model name. Gazebo starts the world in that state: a model it names stands there, not
+    where its own ``<pose>`` puts it; models the state names that are not in the world, its
+    links' poses and its sim time are not used here."""
+    state = world.child("state")
+    if state is None:
+        return {}
+    poses = {}
+    for model in state.all("model"):
+        pose = model.child("pose")
+        if model.attrib.get("name") and pose is not None and pose.value:
+            poses[model.attrib["name"]] = pose
+    return poses
+
+
+def _with_saved_pose(node: Element, saved: Dict[str, Element]) -> Element:
+    """A top-level ``<model>`` or named ``<include>`` with its pose from the saved state."""
+    if node.tag == "model":
+        name = node.attrib.get("name", "")
+    else:
+        name_node = node.child("name")
+        name = name_node.value if name_node is not None else ""
+    pose = saved.get(name) if name else None
+    if pose is None:
+        return node
+    children = [c for c in node.children if c.tag != "pose"] + [pose]
+    return xml_reader.element(node.tag, node.attrib, node.line, children)
+
+
 def _same_geometry(a: Shape, b: Shape, tol: float = 1e-9) -> bool:
     return (a.kind == b.kind and a.mesh == b.mesh and len(a.points) == len(b.points)
             and all(abs(u - v) <= tol for u, v in zip(a.size + a.pose, b.size + b.pose))
@@ -680,7 +777,10 @@ def _check_names(world: World) -> None:
 
 
 def load_world(path: str) -> World:
-    """Parse the SDF file at ``path``; WorldError (one line: file, line, fault) if it cannot."""
+    """Parse the SDF file at ``path``; WorldError (one line: file, line, fault) if it cannot.
+    Its mesh files are first converted in parallel into the disk cache (mesh_cache)."""
+    from .mesh_cache import convert_world
+    convert_world(lambda: _Loader(path).document(_parse_xml(path)), path)
     loader = _Loader(path)
     world = loader.document(_parse_xml(path))
     _check_names(world)

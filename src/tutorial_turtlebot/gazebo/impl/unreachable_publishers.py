@@ -1,5 +1,7 @@
 """One line about a publisher the sim cannot reach, instead of a robot that silently ignores it.
 
+Replaces: rospy's silence (debug-level logs) about a publisher it cannot connect to.
+
 A node on another host that has neither ``ROS_IP`` nor ``ROS_HOSTNAME`` set advertises its
 topics at an address (its hostname, often) that this host cannot resolve or reach. rospy's
 subscriber then fails quietly: the publisher's XML-RPC ``requestTopic`` fails in

@@ -1,5 +1,7 @@
 """Messages whose layout never changes, kept serialized: only the changing fields are rewritten.
 
+Replaces: genpy's serialization of the whole message at every Publisher.publish.
+
 A genpy message is built field by field and serialized into a fresh buffer at every publish
 (rospy's ``Publisher.publish``). The sim's high-rate messages (clock, IMU, odometry, TF, joint
 states, laser scans) keep their frames, names and covariances for life, so each is serialized

@@ -1,5 +1,7 @@
 """Reading TCPROS handshakes so that one slow or hostile client cannot hold up the others.
 
+Replaces: rospy's TCPROS server reading every handshake in its one accept thread, unbounded.
+
 rospy accepts every inbound connection (subscribers of the node's topics and callers of its
 services share one port) in one thread, and reads each connection's handshake header there
 with no time limit and no size limit. A client that sends 2 bytes and waits, or an HTTP GET,

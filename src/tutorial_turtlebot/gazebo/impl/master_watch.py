@@ -1,5 +1,7 @@
 """Registering again with a ROS master that was restarted.
 
+Replaces: rospy registers a node with the master once, at start-up, never again.
+
 A restarted master knows nothing of the nodes that were running: their connections go on, but a
 new subscriber, a service call or ``rosparam get`` finds nothing of the sim. rospy (like roscpp,
 and so Gazebo) registers a node only once, at start-up.
