@@ -167,15 +167,15 @@ class ImageViewTest(unittest.TestCase):
     def test_shows_the_camera_with_size_and_rate_in_the_title(self):
         width, height = CAMERAS[self.model]
         viewer = self.viewer("image:=/camera/rgb/image_raw")
-        # 30 images per sim second; fewer per wall second when the machine is loaded
+        # 30 images per sim second; fewer per wall second when the machine is loaded, more for
+        # a moment while a sim that fell behind (a busy machine) catches up (seen once: 69.5
+        # fps 2 s after the start): the title must come to show at most 60 a second, which an
+        # unpaced sim never does
         match, win_w, win_h, x, y = self.wait_window(
             viewer, r"^/camera/rgb/image_raw  %dx%d rgb8  ([0-9.]+) fps(  shown at \d+%%)?$"
-            % (width, height), accept=lambda m: float(m.group(1)) >= MIN_RATE[self.model])
-        rate = float(match.group(1))
+            % (width, height),
+            accept=lambda m: MIN_RATE[self.model] <= float(m.group(1)) <= 60.0)
         rospy.loginfo("window %r, %dx%d at (%d, %d)", match.string, win_w, win_h, x, y)
-        # Up to 30 a second at real time; more for a moment while a sim that fell behind (a
-        # busy machine) catches up, never as many as an unpaced sim sends.
-        self.assertLessEqual(rate, 60.0, match.string)
         if width <= SCREEN[0] - 40 and height <= SCREEN[1] - 80:
             self.assertEqual((win_w, win_h), (width, height))
             self.assertNotIn("shown at", match.string)
