@@ -39,8 +39,8 @@ def reads(monkeypatch):
     """The files mesh_file really reads (its reader, not the cache), in order."""
     seen = []
     real = mesh_file._read
-    monkeypatch.setattr(mesh_file, "_read", lambda path, suffix: seen.append(path)
-                        or real(path, suffix))
+    monkeypatch.setattr(mesh_file, "_read", lambda path, *rest: seen.append(path)
+                        or real(path, *rest))
     return seen
 
 

@@ -189,7 +189,7 @@ def _read_cached(path: str, suffix: str, file_key: tuple) -> Mesh:
     if mesh is None:
         _reads.log = log = []
         try:
-            mesh = _read(path, suffix)
+            mesh = _read(path, suffix, data)
         finally:
             _reads.log = None
         mesh_cache.store(path, digest, mesh, log)
@@ -221,9 +221,12 @@ def cache_clear() -> None:
     _cached_bytes = 0
 
 
-def _read(path: str, suffix: str) -> Mesh:
-    """The file's mesh, unscaled, checked: finite vertices, triangles with indices in range."""
-    data = read_file(path, MAX_MESH_FILE_BYTES, "this %s file" % _FORMATS[suffix], MeshError)
+def _read(path: str, suffix: str, data: Optional[bytes] = None) -> Mesh:
+    """The file's mesh, unscaled, checked: finite vertices, triangles with indices in range.
+    ``data``: the file's bytes, if the caller has read them already."""
+    if data is None:
+        data = read_file(path, MAX_MESH_FILE_BYTES, "this %s file" % _FORMATS[suffix],
+                         MeshError)
     side_files = _SideFiles(path)
     unreadable = MeshUnreadable if suffix == ".dae" else MeshError   # its content, not the file
     try:
