@@ -4,8 +4,9 @@
 # unit: pytest under the venv's Python, again under Python 3.8 (catkin_ws/venv38, made by
 # `tools/setup.sh --test` where a Python 3.8 exists; skipped with one line where not), and
 # every shell script checked by shellcheck (one test). rostest: every test/rostest/*.test.
-# Ends with one summary line "tests: N passed, N failed" (", N skipped" when some were) and
-# exits non-zero if any failed.
+# Ends with one line "failed: NAME" for each test that failed (pytest's node id, or the rostest
+# file and its test case), then one summary line "tests: N passed, N failed" (", N skipped" when
+# some were), and exits non-zero if any failed.
 set -uo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT" || exit 2
@@ -13,6 +14,7 @@ what=${1:-all}
 passed=0
 failed=0
 skipped=0
+failures=()
 results="$ROOT/catkin_ws/test_results"
 VENV38="$ROOT/catkin_ws/venv38"
 mkdir -p "$results"
@@ -42,6 +44,13 @@ run_pytest() {
     f=$((f + 1))
   fi
   passed=$((passed + p)); failed=$((failed + f + e)); skipped=$((skipped + s))
+  local name
+  while IFS= read -r name; do
+    failures+=("$label: $name")
+  done < <(grep -oE '^(FAILED|ERROR) [^ ]+' "$out" | cut -d' ' -f2)
+  if [ $((f + e)) -gt 0 ] && ! grep -qE '^(FAILED|ERROR) ' "$out"; then
+    failures+=("$label: see $out")
+  fi
 }
 
 run_unit() {
@@ -92,6 +101,7 @@ run_shellcheck() {
   else
     echo "shellcheck: findings above ($n scripts checked)"
     failed=$((failed + 1))
+    failures+=("shellcheck")
   fi
 }
 
@@ -112,6 +122,14 @@ run_rostests() {
     if [ -z "$n" ]; then n=1; f=1; echo "rostest $name reported no result: counted as failed"
     elif [ "$status" -ne 0 ] && [ $((e + f)) -eq 0 ]; then f=1; fi  # died after reporting
     passed=$((passed + n - e - f)); failed=$((failed + e + f))
+    if [ $((e + f)) -gt 0 ]; then
+      # rostest's summary names them: " * FAILURES: 1 [test_x]", " * ERRORS: 0 []".
+      local cases
+      cases=$(grep -E '^ \* (FAILURES|ERRORS): [0-9]+ \[' "$out" | grep -oE '\[.*\]' | tr -d '[]' \
+        | tr ',\n' '  ' | tr -s ' ')
+      cases=${cases# }; cases=${cases% }
+      failures+=("rostest $name${cases:+: $cases}")
+    fi
   done
 }
 
@@ -121,6 +139,9 @@ case "$what" in
   all) run_unit; run_unit38; run_shellcheck; run_rostests ;;
   *) echo "usage: tools/run_tests.sh [unit|rostest|all]" >&2; exit 2 ;;
 esac
+for name in "${failures[@]}"; do
+  echo "failed: $name"
+done
 if [ "$skipped" -gt 0 ]; then
   echo "tests: $passed passed, $failed failed, $skipped skipped"
 else

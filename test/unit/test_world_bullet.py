@@ -152,6 +152,21 @@ def test_a_visual_without_collision_is_seen_but_not_hit(tmp_path, client):
     assert cast(client, (10.0, -3.0, 0.5), (10.0, 3.0, 0.5))[0] == -1
     assert pybullet.getVisualShapeData(ghost, physicsClientId=client)[0][7] == pytest.approx(
         (0.7, 0.7, 0.7, 1.0))
+    # a camera 3 m in front of the 1 m box (at x 10, z 0) sees it in the middle of its image
+    view = pybullet.computeViewMatrix((7.0, 0.0, 0.0), (10.0, 0.0, 0.0), (0, 0, 1))
+    projection = pybullet.computeProjectionMatrixFOV(60, 1.0, 0.1, 20.0)
+    _, _, _, _, seg = pybullet.getCameraImage(
+        32, 32, view, projection, renderer=pybullet.ER_TINY_RENDERER, physicsClientId=client)
+    assert np.asarray(seg).reshape(32, 32)[16, 16] == ghost
+    # and nothing collides with it: a falling ball passes through it
+    pybullet.setGravity(0, 0, -9.8, physicsClientId=client)
+    ball = pybullet.createMultiBody(
+        1.0, pybullet.createCollisionShape(pybullet.GEOM_SPHERE, radius=0.1,
+                                           physicsClientId=client),
+        basePosition=(10.0, 0.0, 1.0), physicsClientId=client)
+    for _ in range(240):
+        pybullet.stepSimulation(physicsClientId=client)
+    assert pybullet.getBasePositionAndOrientation(ball, physicsClientId=client)[0][2] < -0.6
 
 
 def test_a_static_mesh_beyond_one_pybullet_shape_is_built_in_chunks(tmp_path, client):

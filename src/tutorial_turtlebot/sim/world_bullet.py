@@ -260,13 +260,15 @@ def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
 
 def _static_rigid(shape: Shape, collide: bool, links: list) -> bool:
     """Whether a fixed body is made a plain static rigid body (pybullet's maximal coordinates)
-    rather than a multibody: a static mesh collision of one piece, made asleep too. Bullet
-    updates every multibody every step, fixed or not, and the bounds of every static body that
-    is awake: the 169 mesh models of bench/mesh_world.py cost 2.7 times turtlebot3_world's
-    physics CPU per sim second as multibodies, 1.9 times as static rigid bodies, about 1.3
-    times asleep (a body still collides asleep and moves when set). Primitive shapes stay
-    multibodies (turtlebot3_world's contacts, and so its robot's path, stay as they were)."""
-    return shape.kind == "mesh" and collide and not links
+    rather than a multibody, and asleep: a static mesh collision of one piece, and every visual
+    of one piece without a collision. Bullet updates every multibody every step, fixed or not
+    and colliding or not, and the bounds of every static body that is awake: the 171 bodies of
+    bench/mesh_world.py cost 2.7 times turtlebot3_world's physics CPU per sim second as
+    multibodies, 1.9 times as static rigid bodies, 1.35 times asleep, and the same as
+    turtlebot3_world once its 41 visual-only bodies were asleep too (a body still collides
+    asleep and moves when set). Colliding primitive shapes stay multibodies (turtlebot3_world's
+    contacts, and so its robot's path, stay as they were)."""
+    return not links and (not collide or shape.kind == "mesh")
 
 
 def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[int, int]]:
