@@ -3,6 +3,8 @@ from catkin_pkg.python_setup import generate_distutils_setup
 from setuptools import setup
 
 setup(**generate_distutils_setup(
-    packages=["tutorial_turtlebot", "tutorial_turtlebot.sim", "tutorial_turtlebot.gazebo",
+    packages=["tutorial_turtlebot", "tutorial_turtlebot.sim", "tutorial_turtlebot.sim.files",
+              "tutorial_turtlebot.sim.engine", "tutorial_turtlebot.sim.devices",
+              "tutorial_turtlebot.sim.world", "tutorial_turtlebot.gazebo",
               "tutorial_turtlebot.gazebo.impl", "tutorial_turtlebot.lab"],
     package_dir={"": "src"}))

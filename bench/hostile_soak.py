@@ -125,7 +125,7 @@ def hostile_inputs(tmp, burger):
 
 
 def soak(minutes: float) -> dict:
-    from tutorial_turtlebot.sim.urdf_file import urdf_path
+    from tutorial_turtlebot.sim.files.urdf_file import urdf_path
     with open(urdf_path("burger", False)) as f:
         burger = f.read()
     tmp = tempfile.mkdtemp(prefix="hostile_soak_")

@@ -391,7 +391,7 @@ def sim_bounds(wall_seconds=6.0):
     Simulation.step (the drive, IMU filter and schedules too), Simulation.step with every output
     computed as it falls due). The last two are what the node could reach with ROS costing
     nothing: the ceilings under the only-/odom and every-sensor rows."""
-    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+    from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
     sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
     try:
         for _ in range(400):   # 1 s of sim time: settled on its wheels, the brake on
@@ -406,8 +406,8 @@ def paced_floor(seconds=8.0):
     """(CPU % of one core: physics alone, physics and every sensor) of the Simulation paced at
     real time as the node paces it (Pacer.MIN_SLEEP of sim time stepped at once, then a sleep),
     with no ROS: the floor under the real-time CPU row on this machine."""
-    from tutorial_turtlebot.sim.pacing import Pacer
-    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+    from tutorial_turtlebot.sim.world.pacing import Pacer
+    from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
     sim = Simulation(SimConfig(model="burger", world="turtlebot3_world"))
     try:
         batch = int(round(Pacer.MIN_SLEEP / sim.config.time_step))
@@ -642,8 +642,8 @@ def robots_bound(count, world="empty", poses=None, wall_seconds=3.0):
     Simulation.step with no ROS; for the second, every output that falls due is also computed
     (scan, odom, imu, joint_states), as the node computes it for a subscriber."""
     import math
-    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
-    from tutorial_turtlebot.sim.urdf_file import read_urdf, urdf_path
+    from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
+    from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
     from multi_robot import grid_pose
     if poses is None:
         poses = [(p.x, p.y, 0.0) for p in (grid_pose(i).position for i in range(count))]
@@ -664,9 +664,9 @@ def robots_bound(count, world="empty", poses=None, wall_seconds=3.0):
 def render_times(frames=10):
     """Median ms per rendered frame at each RESOLUTIONS size, with EGL (where it loads) and
     with TinyRenderer, from the Waffle Pi's camera pose at the turtlebot3_world spawn."""
-    from tutorial_turtlebot.sim.camera import CameraRenderer
-    from tutorial_turtlebot.sim.robot_plugins import CameraSpec
-    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+    from tutorial_turtlebot.sim.devices.camera import CameraRenderer
+    from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
+    from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
     results = {}
     pose = None  # the camera's optical frame in the world: (position, 3x3 rotation)
     for camera in (True, False):  # True: the sim loads EGL for its camera; False: none
@@ -896,7 +896,7 @@ def mesh_world_physics(world, models, sim_seconds=4.0, rounds=4):
     """{(world, sensors): CPU s per sim s} of Simulation.step of a Burger driving a 0.33 m
     circle (sensors: every output computed as it falls due), no ROS, in turtlebot3_world and
     in ``world``; the two step in turns, ``rounds`` times, in this process."""
-    from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+    from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
     os.environ["GAZEBO_MODEL_PATH"] = models
     sims = {name: Simulation(SimConfig(model="burger", world=name))
             for name in ("turtlebot3_world", world)}

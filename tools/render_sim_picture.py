@@ -21,9 +21,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "src"))
 
-from tutorial_turtlebot.sim.camera import CameraRenderer  # noqa: E402
-from tutorial_turtlebot.sim.robot_plugins import CameraSpec  # noqa: E402
-from tutorial_turtlebot.sim.simulation import SimConfig, Simulation  # noqa: E402
+from tutorial_turtlebot.sim.devices.camera import CameraRenderer  # noqa: E402
+from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec  # noqa: E402
+from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation  # noqa: E402
 
 WIDTH, HEIGHT = 960, 540
 HFOV = math.radians(60.0)

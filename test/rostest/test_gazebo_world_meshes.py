@@ -14,7 +14,7 @@ from geometry_msgs.msg import Pose
 from sensor_msgs.msg import LaserScan
 
 from sim_test_support import WAIT, Driver, arena_wall_distance, box_outside_arena, yaw_of
-from tutorial_turtlebot.sim.simulation import SimConfig, Simulation
+from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 
 
 def reference_scan(x, y, yaw):

@@ -14,7 +14,7 @@ Nothing is rendered or encoded for topics nobody subscribes to.
 import rospy
 from sensor_msgs.msg import CameraInfo, CompressedImage, Image, PointCloud2, PointField
 
-from ..sim.camera import (CameraIntrinsics, depth_image, jpeg_available, jpeg_bytes,
+from ..sim.devices.camera import (CameraIntrinsics, depth_image, jpeg_available, jpeg_bytes,
                      pointcloud_bytes, pointcloud_xyz)
 from rosgraph.names import ns_join
 

@@ -7,8 +7,8 @@ first. Bad arguments, or a running simulator: one line on stderr, exit status 2.
 import sys
 
 from ..errors import UrdfError, UserError
-from ..sim import xml_reader
-from ..sim.robot_models import urdf_path
+from ..sim.files import xml_reader
+from ..robot_models import urdf_path
 from .single_instance import refuse_if_running
 
 USAGE = ("usage: robot_description MODEL [CAMERA] [--new-sim]  (MODEL: burger, waffle, "

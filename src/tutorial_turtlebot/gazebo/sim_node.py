@@ -68,12 +68,12 @@ from .impl.nonblocking_publisher import Backlog, make_nonblocking
 from .impl.packed_messages import PackedClock
 from . import part_times
 from .part_times import TIMES
-from ..sim.pacing import Pacer, check_rtf
+from ..sim.world.pacing import Pacer, check_rtf
 from .robot_topics import RobotTopics
 from .single_instance import refuse_if_running
-from ..sim.simulation import SimConfig, Simulation
-from ..sim.world_models import RequestError
-from ..sim.world_sdf import world_from_command_line
+from ..sim.world.simulation import SimConfig, Simulation
+from ..sim.world.world_models import RequestError
+from ..sim.files.world_sdf import world_from_command_line
 
 SHUTDOWN_CHECK_STEPS = 200
 # The longest the loop sleeps (wall s) without looking at Ctrl-C and ROS shutdown; a request

@@ -55,7 +55,7 @@ from std_srvs.srv import Empty
 
 from ..errors import UserError
 from ..node_output import line_buffered
-from ..sim import xml_reader
+from ..sim.files import xml_reader
 from ..sim.kinematics import quat_from_rpy as quaternion_from_rpy  # noqa: F401 - its -R -P -Y
 
 PROG = "spawn_model"

@@ -55,9 +55,9 @@ from geometry_msgs.msg import Pose, Twist
 from .loop_requests import ANSWER_TIMEOUT, NotAnswered
 from ..errors import one_line
 from .part_times import TIMES
-from ..sim.physics_properties import OdeConfig, PhysicsProperties
-from ..sim.spawn_request import prepare_spawn
-from ..sim.world_control import RequestError, WorldControl
+from ..sim.world.physics_properties import OdeConfig, PhysicsProperties
+from ..sim.files.spawn_request import prepare_spawn
+from ..sim.world.world_control import RequestError, WorldControl
 
 METRICS_PERIOD = 1.0     # wall s between two ~performance_metrics
 JOINT_TYPES = {"revolute": GetJointPropertiesResponse.REVOLUTE,

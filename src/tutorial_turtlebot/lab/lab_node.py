@@ -12,7 +12,7 @@ import rospy
 from geometry_msgs.msg import Twist
 from sensor_msgs.msg import LaserScan
 
-from ..sim.robot_models import MODEL_NAMES
+from ..robot_models import MODEL_NAMES
 from ..node_output import line_buffered
 
 # Wall-clock seconds the zero Twist is given to leave on shutdown (sim time may have stopped).

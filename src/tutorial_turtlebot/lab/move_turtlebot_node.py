@@ -24,7 +24,7 @@ from .lab_node import (CommandPublisher, init_node, model_name, number_param,
                        shut_down_on_signals)
 from .move_args import (SETTINGS, USAGE, command_line_settings, parse, user_args,
                         wants_help)
-from ..sim.robot_models import model_limits
+from ..robot_models import model_limits
 
 
 class MoveTurtlebot:

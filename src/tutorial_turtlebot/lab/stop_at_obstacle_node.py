@@ -28,7 +28,7 @@ import rospy
 
 from .lab_node import ScanToCommand, init_node, model_name, number_param
 from .obstacle_logic import StopAtObstacle
-from ..sim.robot_models import model_limits
+from ..robot_models import model_limits
 
 
 class StopAtObstacleNode:

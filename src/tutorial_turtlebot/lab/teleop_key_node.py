@@ -24,7 +24,7 @@ import rospy
 
 from ..errors import UserError
 from .lab_node import CommandPublisher, init_node, model_name
-from ..sim.robot_models import model_limits
+from ..robot_models import model_limits
 from .teleop_keys import Teleop
 from .terminal_keys import TerminalKeys
 

@@ -36,7 +36,7 @@ import rospy
 
 from .lab_node import ScanToCommand, fatal, init_node, model_name, number_param
 from .obstacle_logic import FORWARD, Wander, turn_radius
-from ..sim.robot_models import model_limits
+from ..robot_models import model_limits
 
 
 class WanderNode:

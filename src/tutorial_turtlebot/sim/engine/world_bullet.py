@@ -1,0 +1,581 @@
+"""Build a loaded ``World`` (world_sdf) as pybullet bodies. Knows nothing of ROS.
+
+Static models: every collision shape becomes one fixed body that also carries its visual twin's
+colour, so contacts, rays and cameras all see it; a visual without a collision twin becomes a
+body that cameras see and rays and contacts pass through. A static mesh collides with its
+triangles themselves.
+Models that are not ``<static>``: every link becomes one movable rigid body of the link's
+``<inertial>`` mass and inertia, holding all its collisions and visuals (box, cylinder, sphere,
+mesh) and its collisions' friction; a mesh collides as its convex hull (Bullet's moving bodies
+are convex). Its frame is the link's centre of mass (see ``link_com_pose``).
+Mesh visuals are drawn part by part, each in its SDF ``<material>`` colour, or where the visual
+has none, in the mesh file's own colour of that part, and with its texture where it has one
+(mesh_file.write_obj_parts; a texture that cannot be used leaves the part in its colour, else
+grey). A visual with an SDF ``<material>`` is drawn in that colour alone, textures left out.
+
+Units: metres; poses in the world frame (z up), as in world_sdf.
+"""
+import os
+import sys
+import tempfile
+from collections import OrderedDict
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import bullet_shapes
+from ..files import mesh_cache
+from .bullet import pybullet
+from ..devices.camera import MAX_TEXTURE_PIXELS, note_textures, texture_budget, texture_budget_refused
+from ...errors import WorldError
+from ..kinematics import pose_from_xyz_rpy, quat_from_matrix
+from ..files.mesh_file import Mesh, MeshPart, load_mesh, texture_pixels, write_obj_parts
+from ..files.world_sdf import Inertial, Link, Shape, World
+
+# World bodies are in collision group 4. A laser that must see the world only casts rays with
+# collisionFilterMask=WORLD_COLLISION_GROUP, and other bodies (the robot) use another group.
+# Bullet also tests the ray's own group (1) against a body's mask, so the mask keeps bit 1; it
+# drops the world's own bit, so that static bodies never test each other (wasted work every step).
+# Robots (physics.RobotBody) take one bit each of the higher ones, up to ALL_COLLISION_GROUPS.
+WORLD_COLLISION_GROUP = 4
+ALL_COLLISION_GROUPS = (1 << 28) - 1
+WORLD_COLLISION_MASK = ALL_COLLISION_GROUPS & ~WORLD_COLLISION_GROUP
+# Movable bodies: in the world's group (the laser sees them) and one of their own, which the
+# static bodies' mask keeps, so that they rest on the floor and hit walls.
+MOVABLE_COLLISION_GROUP = WORLD_COLLISION_GROUP | 8
+MOVABLE_COLLISION_MASK = ALL_COLLISION_GROUPS
+MOVABLE_KINDS = ("box", "cylinder", "sphere", "mesh")
+
+WORLD_FRICTION = 1.0        # lateral friction coefficient of every world surface
+WORLD_RESTITUTION = 0.0
+
+# A plane is a thin box with its top face on the plane (pybullet's EGL renderer crashed on
+# GEOM_PLANE). Its collision box is at least PLANE_MIN_EXTENT square, as Gazebo's plane collision
+# is unbounded; its visual keeps the SDF size.
+PLANE_THICKNESS = 0.05      # m
+PLANE_MIN_EXTENT = 100.0    # m
+
+Point = Tuple[float, float]
+
+
+def build_world(world: World, client_id: int) -> Dict[str, int]:
+    """Create the world's bodies in pybullet client ``client_id``.
+
+    Returns shape name -> body id, for every collision shape and every visual without a twin of
+    a static model (a polyline that is not convex is one body whose extra pieces are links of
+    that body), and for every shape of a movable link (all of one link's shapes share its body).
+    """
+    bodies: Dict[str, int] = {}
+    try:
+        _build(world, client_id, bodies)
+    except BaseException:   # a spawn that cannot be built leaves no body behind
+        for body in set(bodies.values()):
+            pybullet.removeBody(body, physicsClientId=client_id)
+        raise
+    return bodies
+
+
+def _build(world: World, client_id: int, bodies: Dict[str, int]) -> None:
+    """build_world's work: each body into ``bodies`` as soon as it exists."""
+    movable: Dict[str, List[Shape]] = {}
+    # Box, plane and polyline visuals are mesh files, read when their body is created.
+    with tempfile.TemporaryDirectory(prefix="tutorial_turtlebot_meshes_") as mesh_dir:
+        for shape in world.collisions:
+            if shape.static:
+                bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=True)
+            else:
+                movable.setdefault(shape.link, []).append(shape)
+        for shape in world.visuals:
+            if not shape.static:
+                movable.setdefault(shape.link, []).append(shape)
+            elif shape.twin is None:
+                bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=False)
+        links = {link.scoped: link for model in world.model_specs for link in model.links}
+        for scoped, shapes in movable.items():
+            body = _movable_body(links[scoped], shapes, client_id, mesh_dir)
+            bodies.update((shape.name, body) for shape in shapes)
+
+
+def link_com_pose(link: Link):
+    """World pose ((x, y, z), (qx, qy, qz, qw)) of a movable link's body frame: the centre of
+    mass, its axes along the principal axes of inertia."""
+    com_in_link = _com_frame(link.inertial)
+    return pybullet.multiplyTransforms(*pose_from_xyz_rpy(link.pose), *com_in_link)
+
+
+def _com_frame(inertial: Inertial):
+    """(position, quaternion) of the principal-axes centre-of-mass frame in the link frame, and
+    nothing else: see ``_principal``."""
+    rotation, _ = _principal(inertial)
+    pos, orn = pose_from_xyz_rpy(inertial.pose)
+    return pybullet.multiplyTransforms(pos, orn, (0, 0, 0), rotation)
+
+
+def _principal(inertial: Inertial):
+    """(quaternion of the principal axes in the inertial frame, principal moments)."""
+    ixx, iyy, izz, ixy, ixz, iyz = inertial.inertia
+    if ixy == ixz == iyz == 0.0:
+        return (0.0, 0.0, 0.0, 1.0), (ixx, iyy, izz)
+    tensor = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+    moments, axes = np.linalg.eigh(tensor)
+    if np.linalg.det(axes) < 0:
+        axes[:, 2] = -axes[:, 2]
+    return quat_from_matrix(axes), tuple(float(m) for m in moments)
+
+
+def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> int:
+    """One movable rigid body for ``link``: its collisions and visuals placed around its centre
+    of mass, its mass and principal moments of inertia, its first collision's friction."""
+    com_pos, com_orn = link_com_pose(link)
+    to_com = pybullet.invertTransform(com_pos, com_orn)
+    collisions = [s for s in shapes if s.collision]
+    visuals = [s for s in shapes if not s.collision]
+    for s in shapes:
+        if s.kind not in MOVABLE_KINDS:
+            raise WorldError("%s: a %s cannot be part of a model that is not <static> (movable "
+                             "models are made of %s)" % (s.name, s.kind, ", ".join(MOVABLE_KINDS)))
+    col = -1
+    if collisions:
+        col = bullet_shapes.collision_shape_array(
+            cid, **_shape_arrays(collisions, to_com, cid, mesh_dir, visual=False))
+    vis = -1
+    if visuals:
+        vis = pybullet.createVisualShapeArray(
+            **_shape_arrays(visuals, to_com, cid, mesh_dir, visual=True), physicsClientId=cid)
+    _, moments = _principal(link.inertial)
+    body = pybullet.createMultiBody(baseMass=link.inertial.mass, baseCollisionShapeIndex=col,
+                                    baseVisualShapeIndex=vis, basePosition=com_pos,
+                                    baseOrientation=com_orn, physicsClientId=cid)
+    if body < 0:
+        raise WorldError("%s: pybullet could not build this link" % link.scoped)
+    mu = collisions[0].mu if collisions else WORLD_FRICTION
+    pybullet.changeDynamics(body, -1, localInertiaDiagonal=moments, lateralFriction=mu,
+                            restitution=WORLD_RESTITUTION, linearDamping=0.0, angularDamping=0.0,
+                            activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
+                            physicsClientId=cid)
+    pybullet.setCollisionFilterGroupMask(body, -1, MOVABLE_COLLISION_GROUP,
+                                         MOVABLE_COLLISION_MASK if collisions else 0,
+                                         physicsClientId=cid)
+    return body
+
+
+def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: bool) -> dict:
+    """Keyword arguments of createVisualShapeArray (``visual``) or createCollisionShapeArray for
+    ``shapes`` placed in the body frame ``to_com``; mesh files are written in ``mesh_dir``."""
+    frame = "visualFrame" if visual else "collisionFrame"
+    args = {"shapeTypes": [], "halfExtents": [], "radii": [], "lengths": [], "fileNames": [],
+            "meshScales": [], frame + "Positions": [], frame + "Orientations": []}
+    if visual:
+        args["rgbaColors"] = []
+
+    def add(kind, pose, rgba, half=(0.0, 0.0, 0.0), radius=0.0, length=0.0, mesh=""):
+        args["shapeTypes"].append(kind)
+        args[frame + "Positions"].append(pose[0])
+        args[frame + "Orientations"].append(pose[1])
+        args["halfExtents"].append(list(half))
+        args["radii"].append(radius)
+        args["lengths"].append(length)
+        args["fileNames"].append(mesh)
+        args["meshScales"].append([1.0, 1.0, 1.0])
+        if visual:
+            args["rgbaColors"].append(rgba)
+
+    for s in shapes:
+        pose = pybullet.multiplyTransforms(*to_com, *pose_from_xyz_rpy(s.pose))
+        if s.kind == "mesh":
+            mesh = load_mesh(s.mesh, s.size)
+            if not visual:   # one file of every triangle: pybullet collides with its hull
+                mesh = Mesh(mesh.path, mesh.vertices, (MeshPart(mesh.faces, None),))
+            for path, rgba in _visual_files(s, mesh, cid, mesh_dir) if visual else \
+                    write_obj_parts(mesh, mesh_dir):
+                add(pybullet.GEOM_MESH, pose, _part_colour(s, rgba), mesh=path)
+        elif s.kind == "box":
+            half = [v / 2 for v in s.size]
+            if visual:   # a file: EGL flattens thin GEOM_BOX visuals
+                hx, hy = half[0], half[1]
+                add(pybullet.GEOM_MESH, pose, s.rgba, mesh=_obj_file(
+                    [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)], -half[2], half[2], mesh_dir))
+            else:
+                add(pybullet.GEOM_BOX, pose, s.rgba, half=half)
+        elif s.kind == "cylinder":
+            add(pybullet.GEOM_CYLINDER, pose, s.rgba, radius=s.size[0], length=s.size[1])
+        else:
+            add(pybullet.GEOM_SPHERE, pose, s.rgba, radius=s.size[0])
+    return args
+
+
+def _visual_files(shape: Shape, mesh: Mesh, cid: int, mesh_dir: str):
+    """write_obj_parts of a visual mesh: with its textures where the file's own colours are
+    drawn (no SDF <material>) and the client's texture budget (camera.texture_budget) allows;
+    tells the camera when the client gets a texture."""
+    textured = shape.mesh_colours and any(p.texture is not None for p in mesh.parts)
+    if textured:
+        pixels = sum(texture_pixels(p.texture) for p in mesh.parts if p.texture is not None)
+        first = not texture_budget_refused(cid)
+        textured = texture_budget(cid, pixels)
+        if not textured and first:
+            sys.stderr.write("tutorial_turtlebot: %s: more than %d texture pixels in this "
+                             "simulation; the textured meshes past them are drawn in their "
+                             "colours\n" % (shape.name, MAX_TEXTURE_PIXELS))
+    if textured:
+        note_textures(cid)
+    # written once for this content, kept in the mesh cache (mesh_cache.obj_parts)
+    return mesh_cache.visual_obj_parts(mesh, mesh_dir, textured)
+
+
+def _part_colour(shape: Shape, rgba) -> Tuple[float, float, float, float]:
+    """The colour a mesh part is drawn in: the SDF material's, else the file's, else grey."""
+    return tuple(rgba) if shape.mesh_colours and rgba is not None else shape.rgba
+
+
+def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
+    """One fixed body for ``shape``: collision and visual geometry, or visual only."""
+    pieces = _pieces(shape, cid, mesh_dir, collide)
+    (base_col, base_vis), links = pieces[0], pieces[1:]
+    position, orientation = pose_from_xyz_rpy(shape.pose)
+    body = pybullet.createMultiBody(
+        baseMass=0.0, baseCollisionShapeIndex=base_col, baseVisualShapeIndex=base_vis,
+        basePosition=position, baseOrientation=orientation,
+        linkMasses=[0.0] * len(links),
+        linkCollisionShapeIndices=[c for c, _ in links],
+        linkVisualShapeIndices=[v for _, v in links],
+        linkPositions=[(0, 0, 0)] * len(links), linkOrientations=[(0, 0, 0, 1)] * len(links),
+        linkInertialFramePositions=[(0, 0, 0)] * len(links),
+        linkInertialFrameOrientations=[(0, 0, 0, 1)] * len(links),
+        linkParentIndices=[0] * len(links), linkJointTypes=[pybullet.JOINT_FIXED] * len(links),
+        linkJointAxis=[(0, 0, 1)] * len(links),
+        useMaximalCoordinates=_static_rigid(shape, collide, links), physicsClientId=cid)
+    if body < 0:
+        raise WorldError("%s: pybullet could not build %s" % (shape.name, shape.kind))
+    for link in range(-1, len(links)) if collide else ():
+        pybullet.setCollisionFilterGroupMask(body, link, WORLD_COLLISION_GROUP,
+                                             WORLD_COLLISION_MASK, physicsClientId=cid)
+        pybullet.changeDynamics(body, link, lateralFriction=WORLD_FRICTION,
+                                restitution=WORLD_RESTITUTION, physicsClientId=cid)
+    if _static_rigid(shape, collide, links):   # asleep: Bullet skips its bounds every step
+        pybullet.changeDynamics(body, -1, activationState=(
+            pybullet.ACTIVATION_STATE_ENABLE_SLEEPING | pybullet.ACTIVATION_STATE_SLEEP),
+            physicsClientId=cid)
+    return body
+
+
+def _static_rigid(shape: Shape, collide: bool, links: list) -> bool:
+    """Whether a fixed body is made a plain static rigid body (pybullet's maximal coordinates)
+    rather than a multibody, and asleep: a static mesh collision of one piece, and every visual
+    of one piece without a collision. Bullet updates every multibody every step, fixed or not
+    and colliding or not, and the bounds of every static body that is awake: the 171 bodies of
+    bench/mesh_world.py cost 2.7 times turtlebot3_world's physics CPU per sim second as
+    multibodies, 1.9 times as static rigid bodies, 1.35 times asleep, and the same as
+    turtlebot3_world once its 41 visual-only bodies were asleep too (a body still collides
+    asleep and moves when set). Colliding primitive shapes stay multibodies (turtlebot3_world's
+    contacts, and so its robot's path, stay as they were)."""
+    return not links and (not collide or shape.kind == "mesh")
+
+
+def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[int, int]]:
+    """(collision shape id or -1, visual shape id) per convex piece of ``shape``, in its frame.
+
+    Box and plane visuals are mesh files too (``_mesh_visual``): pybullet's EGL renderer
+    tessellates a GEOM_BOX through a convex hull that flattens a box about 800 times wider than
+    thick (the 100 m ground, 5 cm thick) into its middle plane, with one triangle missing.
+    """
+    rgba = shape.rgba
+    if shape.kind == "mesh":
+        return _mesh_pieces(shape, cid, mesh_dir, collide)
+    if shape.kind == "polyline":
+        polygons = [shape.points] if _is_convex(shape.points) else _triangulate(shape)
+        return [_prism(polygon, shape.size[0], rgba, cid, mesh_dir, collide)
+                for polygon in polygons]
+    if shape.kind in ("box", "plane"):
+        if shape.kind == "box":
+            half = [s / 2 for s in shape.size]
+            col_args = {"halfExtents": half}
+            z_range = (-half[2], half[2])
+        else:
+            half = [s / 2 for s in shape.size] + [PLANE_THICKNESS / 2]
+            col_args = {"halfExtents": [max(s, PLANE_MIN_EXTENT) / 2 for s in shape.size]
+                        + [half[2]], "collisionFramePosition": (0, 0, -half[2])}
+            z_range = (-PLANE_THICKNESS, 0.0)
+        col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_BOX, **col_args)
+               if collide else -1)
+        hx, hy = half[0], half[1]
+        rectangle = [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)]
+        return [(col, _mesh_visual(rectangle, *z_range, rgba, cid, mesh_dir))]
+    kind = {"cylinder": pybullet.GEOM_CYLINDER, "sphere": pybullet.GEOM_SPHERE}[shape.kind]
+    if shape.kind == "cylinder":
+        col_args = {"radius": shape.size[0], "height": shape.size[1]}
+        vis_args = {"radius": shape.size[0], "length": shape.size[1]}
+    else:
+        col_args = vis_args = {"radius": shape.size[0]}
+    col = bullet_shapes.collision_shape(cid, kind, **col_args) if collide else -1
+    vis = pybullet.createVisualShape(kind, rgbaColor=rgba, physicsClientId=cid, **vis_args)
+    return [(col, vis)]
+
+
+# Triangles of one concave collision shape: pybullet refuses more than 131,072 vertices or
+# 524,287 indices in one (a static mesh beyond that is split; 40,000 triangles use at most
+# 120,000 vertices).
+TRIMESH_CHUNK = 40_000
+
+
+def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str,
+                 collide: bool) -> List[Tuple[int, int]]:
+    """A static mesh: its triangles as concave collision shapes of TRIMESH_CHUNK triangles or
+    fewer (a fixed body collides with the triangles themselves) and a visual per colour part;
+    the pieces after the first are links of its body."""
+    mesh = load_mesh(shape.mesh, shape.size)
+    collisions = []
+    if collide:   # pybullet takes a concave mesh of at most 131,072 vertices: in chunks
+        faces = mesh.faces
+        for start in range(0, len(faces), TRIMESH_CHUNK):
+            chunk = faces[start:start + TRIMESH_CHUNK]
+            used, local = np.unique(chunk, return_inverse=True)
+            collisions.append(bullet_shapes.collision_shape(
+                cid, pybullet.GEOM_MESH, vertices=mesh.vertices[used].tolist(),
+                indices=local.reshape(-1).tolist(), flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH))
+    visuals = [pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
+                                          rgbaColor=_part_colour(shape, rgba),
+                                          physicsClientId=cid)
+               for path, rgba in _visual_files(shape, mesh, cid, mesh_dir)]
+    count = max(len(collisions), len(visuals))
+    collisions += [-1] * (count - len(collisions))
+    visuals += [-1] * (count - len(visuals))
+    return list(zip(collisions, visuals))
+
+
+def _prism(polygon: Sequence[Point], height: float, rgba, cid: int, mesh_dir: str,
+           collide: bool) -> Tuple[int, int]:
+    """A convex counter-clockwise polygon extruded from z 0 to ``height``: a convex-hull collision
+    shape (pybullet inflates it by its 1 mm collision margin) and a flat-shaded visual mesh of the
+    same solid."""
+    corners = [(x, y, z) for z in (0.0, height) for x, y in polygon]
+    col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_MESH, vertices=corners)
+           if collide else -1)
+    return col, _mesh_visual(polygon, 0.0, height, rgba, cid, mesh_dir)
+
+
+def _mesh_visual(polygon: Sequence[Point], z0: float, z1: float, rgba, cid: int,
+                 mesh_dir: str) -> int:
+    """Visual shape of a convex counter-clockwise polygon extruded from ``z0`` to ``z1``,
+    flat-shaded, written as a Wavefront file in ``mesh_dir`` (read when its body is created).
+
+    A file, because pybullet's EGL renderer draws no mesh given as vertex lists, and flattens
+    thin boxes; both renderers draw a file as it is.
+    """
+    return pybullet.createVisualShape(pybullet.GEOM_MESH, rgbaColor=rgba,
+                                      fileName=_obj_file(polygon, z0, z1, mesh_dir),
+                                      physicsClientId=cid)
+
+
+def _obj_file(polygon: Sequence[Point], z0: float, z1: float, mesh_dir: str) -> str:
+    """Path of a Wavefront file in ``mesh_dir`` of the convex counter-clockwise polygon extruded
+    from ``z0`` to ``z1``, flat-shaded."""
+    n = len(polygon)
+    normals = [(0.0, 0.0, 1.0), (0.0, 0.0, -1.0)]
+    for i in range(n):
+        (x0, y0), (x1, y1) = polygon[i], polygon[(i + 1) % n]
+        length = ((x1 - x0) ** 2 + (y1 - y0) ** 2) ** 0.5
+        normals.append(((y1 - y0) / length, (x0 - x1) / length, 0.0))
+    # .obj indices count from 1: bottom corners 1..n, top corners n+1..2n; normal 1 up, 2 down,
+    # 3+i the side from corner i to corner i+1. Faces are counter-clockwise seen from outside.
+    faces = [[(n + 1 + i, 1) for i in range(n)], [(1 + i, 2) for i in reversed(range(n))]]
+    for i in range(n):
+        j = (i + 1) % n
+        faces.append([(1 + i, 3 + i), (1 + j, 3 + i), (n + 1 + j, 3 + i), (n + 1 + i, 3 + i)])
+    lines = ["v %.9g %.9g %.9g" % (x, y, z) for z in (z0, z1) for x, y in polygon]
+    lines += ["vn %.9g %.9g %.9g" % v for v in normals]
+    lines += ["f " + " ".join("%d//%d" % corner for corner in face) for face in faces]
+    fd, path = tempfile.mkstemp(suffix=".obj", prefix="visual_", dir=mesh_dir)
+    with os.fdopen(fd, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def _cross(o: Point, a: Point, b: Point) -> float:
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
+def _is_convex(polygon: Sequence[Point]) -> bool:
+    """Whether a counter-clockwise polygon turns left at every corner."""
+    n = len(polygon)
+    return all(_cross(polygon[i - 1], polygon[i], polygon[(i + 1) % n]) > 0 for i in range(n))
+
+
+def _triangulate(shape: Shape) -> List[Tuple[Point, Point, Point]]:
+    """Ear clipping of a polyline's simple counter-clockwise polygon into counter-clockwise
+    triangles."""
+    remaining = list(shape.points)
+    triangles = []
+    while len(remaining) > 3:
+        n = len(remaining)
+        for i in range(n):
+            a, b, c = remaining[i - 1], remaining[i], remaining[(i + 1) % n]
+            if _cross(a, b, c) <= 0:
+                continue                                  # a reflex corner is no ear
+            others = (p for p in remaining if p not in (a, b, c))
+            if any(_cross(a, b, p) >= 0 and _cross(b, c, p) >= 0 and _cross(c, a, p) >= 0
+                   for p in others):
+                continue                                  # another corner lies inside
+            triangles.append((a, b, c))
+            del remaining[i]
+            break
+        else:
+            raise WorldError("%s: its polyline cannot be split into triangles" % shape.name)
+    triangles.append(tuple(remaining))
+    return triangles
+
+
+# --- deleted bodies kept for reuse -----------------------------------------------------------
+
+# pybullet frees little of a body on removeBody: its collision shapes (and, with the EGL
+# renderer, the renderer's copy of its visuals) stay until the client closes. Measured per
+# spawn/delete cycle: about 2 KB (a box) and 20 KB (a Burger) of RSS, 16 and 70 KB with EGL.
+# A deleted body is parked instead (far below the world, asleep, colliding with nothing) and
+# the next spawn of the same text takes it back, so that RSS stays flat under churn.
+# At most MAX_PARKED_BODIES wait, the least recently parked removed first: each costs the
+# step a little however asleep it is (2,000 parked boxes: 7 times the CPU of the empty world;
+# 64: 1.26 times; 16: 1.10), and most churn repeats a few texts (the hostile soak: 21).
+PARK_DEPTH = 1e4     # m below the world origin
+PARK_SPACING = 10.0  # m between parked bodies (by body id): they never touch
+MAX_PARKED_BODIES = 32
+
+
+class BodyPool:
+    """Bodies of deleted models by the text they were built from (a key: its digest), to be
+    reused; at most MAX_PARKED_BODIES of them, least recently parked removed first."""
+
+    def __init__(self, client_id: int):
+        self.client = client_id
+        self._parked: "OrderedDict[object, List[List[int]]]" = OrderedDict()
+        self._pristine: Dict[int, list] = {}   # body -> (mass, inertia) of each link, as built
+        self.parked_bodies = 0
+
+    def remember(self, bodies: Sequence[int]) -> None:
+        """Note the mass and inertia of new ``bodies`` (set_link_properties may change them
+        before they are parked: they come back as they were built)."""
+        cid = self.client
+        for body in dict.fromkeys(bodies):
+            self._pristine[body] = [
+                pybullet.getDynamicsInfo(body, link, physicsClientId=cid)[:3:2]
+                for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid))]
+
+    def park(self, key, bodies: Sequence[int]) -> bool:
+        """Park ``bodies`` (of one model) under ``key``; False (nothing done) if one of them
+        was not ``remember``ed or its state is not finite: the caller removes them."""
+        cid = self.client
+        bodies = list(dict.fromkeys(bodies))
+        for body in bodies:
+            if body not in self._pristine:
+                return False
+            pos, orn = pybullet.getBasePositionAndOrientation(body, physicsClientId=cid)
+            lin, ang = pybullet.getBaseVelocity(body, physicsClientId=cid)
+            if not np.all(np.isfinite(pos + orn + lin + ang)):
+                return False
+        for body in bodies:
+            pybullet.resetBasePositionAndOrientation(
+                body, (PARK_SPACING * body, 0.0, -PARK_DEPTH), (0, 0, 0, 1), physicsClientId=cid)
+            pybullet.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
+            for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
+                pybullet.setCollisionFilterGroupMask(body, link, 0, 0, physicsClientId=cid)
+                pybullet.changeDynamics(body, link, activationState=(
+                    pybullet.ACTIVATION_STATE_ENABLE_SLEEPING | pybullet.ACTIVATION_STATE_SLEEP),
+                    physicsClientId=cid)
+        self._parked.setdefault(key, []).append(bodies)
+        self._parked.move_to_end(key)
+        self.parked_bodies += len(bodies)
+        while self.parked_bodies > MAX_PARKED_BODIES:
+            self._remove_oldest()
+        return True
+
+    def _remove_oldest(self) -> None:
+        """Remove the bodies parked longest ago from pybullet."""
+        key, groups = next(iter(self._parked.items()))
+        bodies = groups.pop(0)
+        if not groups:
+            del self._parked[key]
+        for body in bodies:
+            pybullet.removeBody(body, physicsClientId=self.client)
+        self.forget(bodies)
+        self.parked_bodies -= len(bodies)
+
+    def take(self, key) -> Optional[List[int]]:
+        """Bodies parked under ``key`` (None if none), awake, at rest, every joint at 0, with
+        the dynamics they were built with. The caller places them and sets their collision
+        groups (parked bodies collide with nothing)."""
+        parked = self._parked.get(key)
+        if not parked:
+            return None
+        bodies = parked.pop()
+        if not parked:
+            del self._parked[key]
+        self.parked_bodies -= len(bodies)
+        cid = self.client
+        for body in bodies:
+            for link, built in zip(range(-1, len(self._pristine[body]) - 1),
+                                   self._pristine[body]):
+                if pybullet.getDynamicsInfo(body, link, physicsClientId=cid)[:3:2] != built:
+                    pybullet.changeDynamics(body, link, mass=built[0],
+                                            localInertiaDiagonal=built[1], physicsClientId=cid)
+                pybullet.changeDynamics(body, link, frictionAnchor=0, activationState=(
+                    pybullet.ACTIVATION_STATE_WAKE_UP | pybullet.ACTIVATION_STATE_DISABLE_SLEEPING),
+                    physicsClientId=cid)
+                if link >= 0:
+                    pybullet.resetJointState(body, link, 0.0, 0.0, physicsClientId=cid)
+        return bodies
+
+    def forget(self, bodies: Sequence[int]) -> None:
+        """``bodies`` were removed from pybullet (their ids may be given to new bodies)."""
+        for body in bodies:
+            self._pristine.pop(body, None)
+
+
+def body_pool(physics) -> BodyPool:
+    """The BodyPool of a WorldPhysics (made the first time it is asked for)."""
+    pool = getattr(physics, "body_pool", None)
+    if pool is None:
+        pool = physics.body_pool = BodyPool(physics.client)
+    return pool
+
+
+def reused_world_bodies(world: World, bodies: Sequence[int]) -> Dict[str, int]:
+    """``build_world``'s answer for ``world`` made of ``bodies``: those it built for the same
+    text (under any model name), one per body, in the order it built them."""
+    groups: Dict[str, List[str]] = {}   # body by body, in build order: its shape names
+    for s in world.collisions:
+        if s.static:
+            groups[s.name] = [s.name]
+    for s in world.visuals:
+        if s.static and s.twin is None:
+            groups[s.name] = [s.name]
+    for s in world.collisions + world.visuals:
+        if not s.static:
+            groups.setdefault("link " + s.link, []).append(s.name)
+    if len(groups) != len(bodies):
+        raise WorldError("the parked bodies do not fit this model")
+    return {name: body for names, body in zip(groups.values(), bodies) for name in names}
+
+
+def place_world_bodies(world: World, bodies: Dict[str, int], cid: int) -> None:
+    """Put reused bodies where ``build_world`` builds them for ``world``, at rest, colliding
+    as it sets them."""
+    links = {link.scoped: link for model in world.model_specs for link in model.links}
+    for shape in world.collisions + world.visuals:
+        body = bodies.get(shape.name)
+        if body is None:    # a static visual drawn by its collision twin's body
+            continue
+        if shape.static:
+            pos, orn = pose_from_xyz_rpy(shape.pose)
+        else:
+            pos, orn = link_com_pose(links[shape.link])
+        pybullet.resetBasePositionAndOrientation(body, pos, orn, physicsClientId=cid)
+        pybullet.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
+        for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
+            if shape.static and shape.collision:
+                pybullet.setCollisionFilterGroupMask(body, link, WORLD_COLLISION_GROUP,
+                                                     WORLD_COLLISION_MASK, physicsClientId=cid)
+            elif not shape.static:
+                has_collision = any(s.collision and s.link == shape.link
+                                    for s in world.collisions)
+                pybullet.setCollisionFilterGroupMask(
+                    body, link, MOVABLE_COLLISION_GROUP,
+                    MOVABLE_COLLISION_MASK if has_collision else 0, physicsClientId=cid)

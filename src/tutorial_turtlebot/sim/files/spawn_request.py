@@ -1,0 +1,237 @@
+"""A spawn request's model_xml, checked and turned into what the world builder builds. No ROS.
+
+Three kinds, as Gazebo's spawn services take them:
+- SDF: ``<sdf>`` (or ``<gazebo>``) holding one ``<model>`` of primitive shapes (world_sdf's
+  subset): it becomes a ``World`` of that one model, renamed and placed;
+- URDF: ``<robot>`` of links and joints, read and checked by urdf_file as a robot's is (one
+  ``RobotDescription``, ``description``), with box, cylinder, sphere or mesh geometry and no
+  robot plugins: ``urdf`` is its text with the requested name and each mesh filename made the
+  absolute path of its file (``package://``, ``file://``, or a path; a relative one from the
+  working directory), which pybullet loads (meshes through urdf_meshes);
+- a robot: a URDF whose ``<gazebo>`` blocks hold plugins: ``robot`` is its text as given, and
+  the simulation builds it from ``description`` with its plugins (``Simulation.add_robot``).
+The text is parsed once (xml_reader) and checked once; everything downstream uses what that
+gives. Refused, with one line saying why (a RequestError whose text is the service's status
+message): text over ``MAX_XML_BYTES``, anything xml_reader refuses (malformed XML with its line,
+a DOCTYPE, nesting deeper than xml_reader.MAX_DEPTH), an unknown root, anything urdf_file or
+world_sdf refuses (a mesh file that cannot be found or is of an unknown kind, a bad mesh scale,
+any number beyond the limits of ``limits``), an initial pose beyond them.
+
+``prepare_spawn`` does all of that outside the stepping loop (the world API calls it from the
+service's own thread), holds the spawn to the MAX_SPAWN_* budgets of what the loop may build,
+and reads every mesh once, so that the loop only makes the pybullet bodies.
+"""
+import hashlib
+import os
+import threading
+import time
+from dataclasses import dataclass
+from typing import Optional
+from xml.etree import ElementTree
+
+from ...errors import UserError
+from ..world import reference_frames as rf
+from . import limits
+from . import xml_reader
+from ..kinematics import xyz_rpy_from_pose
+from .urdf_file import RobotDescription, read_urdf_element
+from .urdf_meshes import absolute_meshes, mesh_paths
+from ..engine.world_bullet import MOVABLE_KINDS
+from ..world.world_models import RequestError
+from .world_sdf import World, load_model_xml
+from .xml_reader import Element
+
+MAX_XML_BYTES = 1_000_000
+PREFIX = "SpawnModel: Failure - "
+# What one spawn may cost the loop (it builds the bodies between two steps, while physics,
+# /clock and every other request wait): refused before anything is built.
+MAX_SPAWN_SHAPES = 1000         # collisions and visuals, a polyline's triangles and a mesh's
+                                # colour parts counted one each (the house world holds ~600)
+MAX_POLYLINE_POINTS = 256       # corners of one polyline (cut into triangles, one body each)
+MAX_SPAWN_TRIANGLES = 200_000   # the mesh triangles of one spawn, after their files are read
+                                # (a static one of 180,000 takes the loop 1.2 s to build)
+MAX_MOVABLE_MESH_VERTICES = 100_000  # a movable mesh collides as the hull of its vertices
+PREPARE_SECONDS = 30.0          # wall s to read and check a spawn's text and files
+_PREPARE_LOCK = threading.Lock()   # one spawn is read at a time (the mesh caches are shared)
+
+
+@dataclass
+class SpawnRequest:
+    """A parsed spawn: ``world`` (SDF) or ``description`` (URDF, read once) is set; a URDF is
+    either a plain model (``urdf``: the text pybullet loads) or a robot with plugins
+    (``robot``: its text as given)."""
+
+    name: str
+    world: Optional[World] = None
+    urdf: Optional[str] = None
+    robot: Optional[str] = None
+    description: Optional[RobotDescription] = None
+    digest: str = ""    # sha256 of the text it was read from: the key of its parked bodies
+
+    def plain_urdf(self) -> Element:
+        """A copy of a plain URDF's ``<robot>`` as ``urdf`` writes it: renamed, without
+        ``<gazebo>`` blocks, each mesh filename the absolute path of its file."""
+        robot = absolute_meshes(self.description.root, mesh_paths(self.description))
+        robot.set("name", self.name)
+        for gazebo in robot.findall("gazebo"):
+            robot.remove(gazebo)
+        return robot
+
+
+def _check_size(xml: str) -> None:
+    if len(xml) > MAX_XML_BYTES:
+        raise RequestError(PREFIX + "model_xml is %d characters, more than the %d allowed"
+                           % (len(xml), MAX_XML_BYTES))
+    if not xml.strip():
+        raise RequestError(PREFIX + "model_xml is empty")
+
+
+def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf") -> SpawnRequest:
+    """Check and parse a spawn of ``xml`` as model ``name`` at world ``pose``. ``kind`` is the
+    service called: "sdf" takes SDF or URDF (as Gazebo's spawn_sdf_model does), "urdf" only
+    URDF. A robot's errors name it "model_xml of <name>", others "model_xml". The request
+    carries the text's digest (the key of its bodies once deleted)."""
+    request = _parse(name, xml, pose, kind)
+    request.digest = hashlib.sha256(xml.encode("utf-8", "surrogatepass")).hexdigest()
+    return request
+
+
+def _parse(name: str, xml: str, pose: rf.Pose, kind: str) -> SpawnRequest:
+    _check_size(xml)
+    try:
+        root = xml_reader.parse(xml, "model_xml")
+        if root.tag == "robot":
+            return _urdf_request(name, xml, root)
+    except UserError as err:
+        raise RequestError(PREFIX + str(err)) from None
+    if kind == "urdf":
+        raise RequestError(PREFIX + "spawn_urdf_model needs a <robot> root element, got <%s>"
+                           % root.tag)
+    if root.tag not in ("sdf", "gazebo"):
+        raise RequestError(PREFIX + "model_xml: the root element is <%s>: expected <sdf> or "
+                                    "<robot>" % root.tag)
+    try:
+        world = load_model_xml(root, "model_xml", name, xyz_rpy_from_pose(pose),
+                               max_shapes=MAX_SPAWN_SHAPES)
+    except UserError as err:
+        raise RequestError(PREFIX + str(err)) from None
+    for shape in world.shapes:
+        if not shape.static and shape.kind not in MOVABLE_KINDS:
+            raise RequestError(PREFIX + "%s: a %s cannot be part of a model that is not "
+                                        "<static>" % (shape.name, shape.kind))
+    return SpawnRequest(name, world=world)
+
+
+def prepare_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf",
+                  seconds: float = PREPARE_SECONDS) -> SpawnRequest:
+    """Everything of a spawn but building it, for any thread: parse_spawn, its cost held to the
+    MAX_SPAWN_* budgets, and every mesh it names read and converted once (mesh_file's and
+    urdf_meshes' caches), so that building it in the loop does pybullet calls only. RequestError
+    (one line) over a budget, or when the reading took more than ``seconds``: nothing is built
+    then."""
+    with _PREPARE_LOCK:
+        deadline = time.monotonic() + seconds
+        request = parse_spawn(name, xml, pose, kind)
+        _check_time(deadline, seconds)
+        if request.world is not None:
+            _prepare_world(request.world, deadline, seconds)
+        else:
+            _prepare_urdf(request, deadline, seconds)
+        return request
+
+
+def _check_time(deadline: float, seconds: float) -> None:
+    if time.monotonic() > deadline:
+        raise RequestError(PREFIX + "reading model_xml and its files took more than %g s; "
+                                    "nothing was spawned" % seconds)
+
+
+def _over(what: str, count: int, limit: int) -> RequestError:
+    return RequestError(PREFIX + "%s: %d, more than the %d one spawn may build; nothing was "
+                                 "spawned" % (what, count, limit))
+
+
+def _prepare_world(world: World, deadline: float, seconds: float) -> None:
+    from .mesh_file import load_mesh      # trimesh and pycollada only for meshes
+    pieces = triangles = 0
+    for shape in world.shapes:
+        pieces += 1
+        if shape.kind == "polyline":
+            if len(shape.points) > MAX_POLYLINE_POINTS:
+                raise _over("%s: polyline points" % shape.name, len(shape.points),
+                            MAX_POLYLINE_POINTS)
+            pieces += max(0, len(shape.points) - 3)
+        elif shape.kind == "mesh":
+            try:
+                mesh = load_mesh(shape.mesh, shape.size)
+            except UserError as err:
+                raise RequestError(PREFIX + str(err)) from None
+            triangles += sum(len(part.faces) for part in mesh.parts)
+            pieces += len(mesh.parts) - 1
+            if not shape.static and len(mesh.vertices) > MAX_MOVABLE_MESH_VERTICES:
+                raise _over("%s: vertices of a movable mesh" % shape.name, len(mesh.vertices),
+                            MAX_MOVABLE_MESH_VERTICES)
+            if triangles > MAX_SPAWN_TRIANGLES:
+                raise _over("mesh triangles", triangles, MAX_SPAWN_TRIANGLES)
+            _check_time(deadline, seconds)
+        if pieces > MAX_SPAWN_SHAPES:
+            raise _over("shapes (collisions, visuals, polyline triangles, mesh parts)", pieces,
+                        MAX_SPAWN_SHAPES)
+
+
+def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> None:
+    from .urdf_meshes import bullet_urdf_text, mesh_triangles
+    description = request.description
+    shapes = sum(len(link.visuals) + len(link.collisions)
+                 for link in description.links.values())
+    if shapes > MAX_SPAWN_SHAPES:
+        raise _over("shapes (links' collisions and visuals)", shapes, MAX_SPAWN_SHAPES)
+    try:
+        triangles, hull_vertices = mesh_triangles(description)
+        if triangles > MAX_SPAWN_TRIANGLES:
+            raise _over("mesh triangles", triangles, MAX_SPAWN_TRIANGLES)
+        if hull_vertices > MAX_MOVABLE_MESH_VERTICES:
+            raise _over("vertices of a collision mesh (it collides as their hull)",
+                        hull_vertices, MAX_MOVABLE_MESH_VERTICES)
+        _check_time(deadline, seconds)
+        # the conversions pybullet's copy needs, done now: building it later finds them made
+        bullet_urdf_text(absolute_meshes(description.root, mesh_paths(description)),
+                         os.getcwd())
+    except UserError as err:
+        raise RequestError(PREFIX + str(err)) from None
+    _check_time(deadline, seconds)
+
+
+def _urdf_request(name: str, xml: str, root: Element) -> SpawnRequest:
+    """The request of a URDF (``root``: its parsed ``<robot>``), read and checked by urdf_file,
+    relative mesh filenames from the working directory; UserError if it cannot be."""
+    is_robot = any(gazebo.find(".//plugin") is not None for gazebo in root.iter("gazebo"))
+    source = "model_xml of %s" % name if is_robot else "model_xml"
+    description = read_urdf_element(root, source, os.getcwd())
+    if is_robot:
+        return SpawnRequest(name, robot=xml, description=description)
+    request = SpawnRequest(name, description=description)
+    request.urdf = ElementTree.tostring(request.plain_urdf(), encoding="unicode")
+    return request
+
+
+def placed(pose: rf.Pose, frame: Optional[rf.Pose]) -> rf.Pose:
+    """The world pose of a spawn's ``initial_pose`` given in ``frame`` (None: the world), its
+    quaternion normalised (all-zero: identity). ValueError (one line naming the field and the
+    limit) for NaN or inf, or a position (given, or in the world) beyond limits.MAX_POSITION."""
+    position, orientation = pose
+    if not rf.finite(position, orientation):
+        raise ValueError("initial_pose has NaN or infinite values")
+    problem = limits.position_problem("initial_pose.position", position)
+    if problem:
+        raise ValueError(problem)
+    pose = (tuple(float(v) for v in position),
+            limits.unit_quaternion(orientation, "initial_pose.orientation"))
+    if frame is None:
+        return pose
+    pose = rf.compose(frame, pose)
+    problem = limits.position_problem("initial_pose.position (in the world)", pose[0])
+    if problem:
+        raise ValueError(problem)
+    return pose[0], limits.unit_quaternion(pose[1])
+

@@ -1,0 +1,315 @@
+"""The simulated world and its robots, as Gazebo and its ROS plugins present them, without ROS.
+
+``Simulation`` owns the world's physics, the sim clock (integer ns), the world's models and the
+robots (``SimRobot``, each made from its URDF's <gazebo> plugins), and answers "what is due now".
+The ROS node only converts. The robot of ``SimConfig`` (the one sim.launch starts, in the
+node's namespace) is ``self.robot``; others are added by ``add_robot`` (spawn_urdf_model).
+Units: m, s, rad.
+"""
+import math
+from dataclasses import dataclass
+from typing import Dict, List, Optional, Tuple
+
+from ...errors import UserError
+from ..files import limits
+from ..engine.applied_forces import AppliedForces
+from ..kinematics import quat_from_yaw
+from ..engine.physics import GRAVITY, WorldPhysics
+from .physics_properties import OdeConfig, PhysicsProperties, bullet_parameters
+from ...robot_models import model_limits, turtlebot3_model_of
+from .schedule import RateSchedule, seconds_to_ns, NS_PER_S
+from .sim_robot import ImuState, OdomState, RobotOptions, SimRobot, normalize_namespace
+from .spawn_check import check_spawn, footprint_radius, resting_height
+from ..files.urdf_file import RobotDescription, read_urdf, urdf_path
+from .world_models import ModelRegistry, RequestError, model_of_urdf_body, models_of_world, \
+    robot_model_name
+from ..engine.bullet import pybullet
+from ..engine import gui_window
+from ..files.world_sdf import load_world, resolve_world
+
+__all__ = ["SimConfig", "Simulation", "OdomState", "ImuState"]
+# A robot's outputs in what step() returns: (the SimRobot, "odom"); the world's: (None, "clock").
+Due = Tuple[Optional[SimRobot], str]
+
+
+@dataclass
+class SimConfig:
+    """Everything that picks what is simulated. Rates in Hz of sim time."""
+
+    model: str = "burger"
+    world: str = "turtlebot3_world"      # a catalogue name or a path to an SDF file
+    x: Optional[float] = None            # spawn of base_footprint; None = the world's spawn
+    y: Optional[float] = None
+    z: float = 0.0
+    yaw: Optional[float] = None
+    camera: Optional[bool] = None        # None: the URDF's camera, if it has one; False: none;
+                                         # True on a burger: the AutoRace burger's URDF
+    lidar_model: str = "gazebo"          # gazebo: as the URDF declares; lds01: the real driver
+    odom_source: Optional[str] = None    # None: the URDF's odometrySource
+    clamp_cmd_vel: bool = True           # hold commands to the model's limits, as the firmware
+    gui: bool = False                    # pybullet's own window (needs a display)
+    time_step: float = 0.0025            # s of sim time per physics step
+    solver_iterations: int = 20
+    clock_rate: float = 100.0
+    seed: int = 0                        # laser noise
+    robot_name: Optional[str] = None     # the robot's model name; None = turtlebot3_gazebo's
+    lidar_samples: Optional[int] = None  # rays per scan; None: the URDF's (the DQN stages: 24)
+    spawn_robot: bool = True             # False: an empty world; robots come by spawn_model
+    urdf: Optional[str] = None           # a robot URDF file to simulate instead of the model's
+
+    def validate(self) -> None:
+        """Raise UserError (one line) for any value that cannot be simulated."""
+        self.robot_options().validate()
+        if not 0.0001 <= self.time_step <= 0.01:
+            raise UserError("max_step_size %r s is outside 0.0001..0.01" % self.time_step)
+        rate = self.clock_rate
+        if not (isinstance(rate, (int, float)) and 0 < rate <= 1.0 / self.time_step):
+            raise UserError("clock_rate %r Hz must be > 0 and at most the physics rate %g Hz"
+                            % (rate, 1.0 / self.time_step))
+        for name in ("x", "y", "z", "yaw"):
+            value = getattr(self, name)
+            if value is not None and not (isinstance(value, (int, float))
+                                          and math.isfinite(value)):
+                raise UserError("spawn %s must be a finite number, got %r" % (name, value))
+            problem = value is not None and limits.outside(
+                "spawn " + name, value, -limits.MAX_POSITION, limits.MAX_POSITION,
+                "rad" if name == "yaw" else "m")
+            if problem:
+                raise UserError(problem)
+        if self.robot_name is not None and (not self.robot_name.strip() or "::" in self.robot_name):
+            raise UserError("robot_name %r must be non-empty and without '::'" % self.robot_name)
+        if not (isinstance(self.solver_iterations, int)
+                and 0 < self.solver_iterations <= limits.MAX_SOLVER_ITERATIONS):
+            raise UserError("solver_iterations must be a positive integer, at most %d, got %r"
+                            % (limits.MAX_SOLVER_ITERATIONS, self.solver_iterations))
+
+    def robot_options(self, urdf_robot_name: str = "") -> RobotOptions:
+        """The launch args' overrides for a robot; its command limits are its TurtleBot3
+        model's (the config's model, else the one its URDF's robot name names)."""
+        model = turtlebot3_model_of(urdf_robot_name) if urdf_robot_name else self.model
+        return RobotOptions(
+            lidar_model=self.lidar_model, lidar_samples=self.lidar_samples,
+            odom_source=self.odom_source, camera=self.camera is not False,
+            limits=model_limits(model) if self.clamp_cmd_vel and model else None)
+
+
+class Simulation:
+    """A world with its robots, stepped one physics step at a time."""
+
+    def __init__(self, config: SimConfig):
+        config.validate()
+        self.config = config
+        world_path, world_spawn = resolve_world(config.world)
+        self.world = load_world(world_path)
+        self.spawn = self._spawn(world_spawn)
+        description = None
+        options = config.robot_options()
+        if config.spawn_robot:
+            description = read_urdf(config.urdf or urdf_path(config.model, bool(config.camera)))
+            x, y, z, yaw = self.spawn
+            radius = footprint_radius(description)
+            z = resting_height(self.world, x, y, radius, z)   # on a raised floor, if any
+            check_spawn(self.world, x, y, radius, z=z)
+            self.spawn = (x, y, z, yaw)
+        # Cameras render through EGL where it works; it must be loaded before any body. An
+        # empty world (robots to be spawned) loads it in case one of them has a camera.
+        wants_camera = (description is None
+                        or (description.plugins.camera is not None and options.camera))
+        self.physics = WorldPhysics(self.world, config.time_step, config.solver_iterations,
+                                    config.gui, egl=wants_camera)
+        self.models = ModelRegistry()
+        for model in models_of_world(self.world, self.physics.world_bodies, self.physics.client):
+            self.models.add(model)
+        self.physics_properties = PhysicsProperties.for_factor(
+            config.time_step, 1.0, OdeConfig(sor_pgs_iters=config.solver_iterations),
+            (0.0, 0.0, -GRAVITY))
+        # the world API's wrenches, joint efforts and weightless links (world_control)
+        self.forces = AppliedForces(self.physics.client, lambda: self.physics_properties.gravity)
+        self.models.on_rebuild = self.forces.forget_model   # a rebuilt model's bodies are new
+        self.step_ns = seconds_to_ns(config.time_step)
+        self.time_ns = 0
+        self.schedules: Dict[str, RateSchedule] = {"clock": RateSchedule(config.clock_rate)}
+        self.robots: Dict[str, SimRobot] = {}
+        self._robot_list: List[SimRobot] = []
+        self.robot: Optional[SimRobot] = None
+        self.robot_name = config.robot_name or robot_model_name(
+            config.world if not config.world.endswith((".world", ".sdf")) else "", config.model)
+        if description is not None:
+            x, y, z, yaw = self.spawn
+            pose = ((x, y, z), quat_from_yaw(yaw))
+            try:
+                self.robot = self.add_robot(self.robot_name, "", description, pose, options)
+            except RequestError as err:
+                raise UserError(str(err)) from None
+        if config.gui:
+            gui_window.look_at(self.physics.client, self.spawn[:3], self.spawn[3])
+        self._reset_schedules()
+
+    def _spawn(self, world_spawn) -> Tuple[float, float, float, float]:
+        default = world_spawn if world_spawn else (0.0, 0.0, 0.0)
+        x, y, yaw = (default[i] if value is None else value
+                     for i, value in enumerate((self.config.x, self.config.y, self.config.yaw)))
+        return (x, y, self.config.z, yaw)
+
+    def _reset_schedules(self) -> None:
+        for schedule in self.schedules.values():
+            schedule.reset(self.time_ns)
+        self._next_output_ns = self.time_ns
+
+    # --- robots ------------------------------------------------------------------------------
+
+    def add_robot(self, name: str, namespace: str, description: RobotDescription, pose,
+                  options: Optional[RobotOptions] = None) -> SimRobot:
+        """Add a robot made from ``description``'s plugins, its root link at world ``pose``
+        ((x, y, z), (qx, qy, qz, qw)), its topics and frames in ``namespace``. RequestError
+        (Gazebo's status text) when the name or namespace is taken or illegal, or the robot
+        cannot be built; nothing changes then."""
+        if name in self.models:
+            raise RequestError("SpawnModel: Failure - entity already exists.")
+        try:
+            namespace = normalize_namespace(namespace)
+        except UserError as err:
+            raise RequestError("SpawnModel: Failure - %s" % err) from None
+        for other in self._robot_list:
+            if other.namespace == namespace:
+                raise RequestError("SpawnModel: Failure - robot %r already uses namespace %r; "
+                                   "give this one its own robot_namespace"
+                                   % (other.name, namespace or "/"))
+        if options is None:
+            options = self.config.robot_options(description.name)
+        try:
+            robot = SimRobot(self.physics, name, namespace, description, pose, options,
+                             self.time_ns, seed=self.config.seed + len(self.robots))
+        except UserError as err:
+            raise RequestError("SpawnModel: Failure - %s" % err) from None
+        body = robot.body
+        collisions = description.collision_names()   # get_model_properties' geom_names
+        try:
+            model = model_of_urdf_body(name, body.robot, self.physics.client, "robot",
+                                       reset_hook=body.reset_robot,
+                                       remove_hook=lambda: self._forget_robot(name),
+                                       collisions=collisions)
+        except BaseException:   # nothing of it stays in the world
+            body.remove()
+            raise
+
+        def rebuild():   # a body whose state went NaN: the robot's URDF loaded again
+            body.rebuild()
+            return model_of_urdf_body(name, body.robot, self.physics.client, "robot",
+                                      spawn_pose=model.spawn_pose, collisions=collisions)
+        model.rebuild_hook = rebuild
+        self.models.add(model)
+        self.robots[name] = robot
+        self._robot_list.append(robot)
+        self._next_output_ns = self.time_ns
+        return robot
+
+    def _forget_robot(self, name: str) -> None:
+        """The robot's part of ``self.models.remove(name)`` (delete_model)."""
+        robot = self.robots.pop(name)
+        self._robot_list.remove(robot)
+        robot.body.remove()
+        if robot is self.robot:
+            self.robot = None
+
+    # --- time and stepping ---------------------------------------------------------------------
+
+    @property
+    def time(self) -> float:
+        """Sim time in seconds."""
+        return self.time_ns / NS_PER_S
+
+    def step(self) -> List[Due]:
+        """One physics step; returns what is due at the new time: (None, "clock") and the other
+        world outputs first, then (robot, "odom" | "joint_states" | "scan" | "imu" | "camera")."""
+        now = self.time_ns
+        for robot in self._robot_list:
+            robot.before_step(now)
+        if self.forces.active:
+            self.forces.apply(now)
+        self.physics.step()
+        self.time_ns = now = now + self.step_ns
+        if now < self._next_output_ns:
+            return []
+        due: List[Due] = [(None, name) for name, s in self.schedules.items() if s.due(now)]
+        next_ns = min(s.next_ns for s in self.schedules.values())
+        for robot in self._robot_list:
+            due.extend((robot, name) for name in robot.due(now))
+            next_ns = min(next_ns, robot.next_output_ns)
+        self._next_output_ns = next_ns
+        return due
+
+    def reset_world(self) -> None:
+        """Every model (robots, the world's movable models, spawned ones) back to its spawn
+        pose at rest; time runs on (Gazebo's reset_world)."""
+        self.models.reset()
+        for robot in self._robot_list:
+            robot.reset_state(self.time_ns)
+        self._reset_schedules()
+
+    def reset_simulation(self) -> None:
+        """Everything back to its spawn and sim time back to 0 (Gazebo's reset_simulation)."""
+        self.time_ns = 0
+        self.reset_world()
+
+    def add_schedule(self, name: str, rate: float) -> None:
+        """Report (None, ``name``) from step() at ``rate`` Hz of sim time from now on."""
+        self.schedules[name] = RateSchedule(rate)
+        self.schedules[name].reset(self.time_ns)
+        self._next_output_ns = self.time_ns
+
+    def set_physics_properties(self, props: PhysicsProperties) -> None:
+        """Apply a validated PhysicsProperties: the step, gravity and Bullet's counterparts of
+        the ODE fields; the real-time factor is the caller's pacer's."""
+        cid = self.physics.client
+        pybullet.setTimeStep(props.time_step, physicsClientId=cid)
+        pybullet.setGravity(*props.gravity, physicsClientId=cid)
+        pybullet.setPhysicsEngineParameter(physicsClientId=cid, **bullet_parameters(props.ode))
+        self.physics.time_step = props.time_step
+        self.config.time_step = props.time_step
+        self.step_ns = seconds_to_ns(props.time_step)
+        self.physics_properties = props
+
+    def close(self) -> None:
+        """Release the physics client."""
+        self.physics.close()
+
+    # --- the robot of SimConfig (sim.launch's one robot) -----------------------------------------
+
+    def command(self, linear: float, angular: float) -> List[str]:
+        """SimRobot.command of ``self.robot``."""
+        return self.robot.command(linear, angular)
+
+    def odom(self) -> OdomState:
+        return self.robot.odom()
+
+    def ground_truth(self):
+        return self.robot.ground_truth()
+
+    def joint_states(self):
+        return self.robot.joint_states()
+
+    def scan(self):
+        return self.robot.scan()
+
+    def imu(self) -> ImuState:
+        return self.robot.imu()
+
+    def camera_image(self, depth: bool = False):
+        return self.robot.camera_image(depth)
+
+    @property
+    def laser(self):
+        return self.robot.laser
+
+    @property
+    def camera(self):
+        return self.robot.camera
+
+    @property
+    def camera_spec(self):
+        return self.robot.camera_spec
+
+    @property
+    def description(self) -> RobotDescription:
+        return self.robot.description
