@@ -67,7 +67,6 @@ them but soak and hostile.
 import argparse
 import os
 import signal
-import socket
 import statistics
 import subprocess
 import sys
@@ -78,6 +77,11 @@ FIXTURES = os.path.join(HERE, os.pardir, "test", "fixtures")
 MESH_WORLD = os.path.abspath(os.path.join(FIXTURES, "worlds", "turtlebot3_world_meshes.world"))
 MESH_MODELS = os.path.abspath(os.path.join(FIXTURES, "gazebo_models"))
 sys.path.insert(0, os.path.join(HERE, os.pardir, "src"))
+sys.path.insert(0, os.path.join(HERE, os.pardir, "test"))
+from process_helpers import (cpu_seconds, free_port, rss_kb, signal_process,  # noqa: E402,F401
+                             stop_process, wait_for)
+
+STOP_WAIT = 15.0   # wall s a process has to end after SIGINT before SIGTERM and SIGKILL
 
 ALL_SENSORS = ["/scan", "/odom", "/imu", "/joint_states", "/tf"]
 # gazebo/part_times.py's parts, as rows (idle is 0 as fast as possible)
@@ -97,12 +101,6 @@ TARGETS = {
     "meshworld_second": "<= 2",
     "meshworld_physics": "<= 1.3",
 }
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("localhost", 0))
-        return s.getsockname()[1]
 
 
 class SimRun:
@@ -136,68 +134,43 @@ class SimRun:
         self.procs.append(self.launch)
 
     def sim_pid(self, timeout=30.0):
-        deadline = time.time() + timeout
-        while time.time() < deadline:
-            for pid in os.listdir("/proc"):
-                if not pid.isdigit():
-                    continue
-                try:
-                    with open("/proc/%s/cmdline" % pid, "rb") as f:
-                        cmd = f.read().split(b"\0")
-                    with open("/proc/%s/environ" % pid, "rb") as f:
-                        env = f.read().split(b"\0")
-                except OSError:
-                    continue
-                master = [e for e in env if e.startswith(b"ROS_MASTER_URI=")]
-                if (b"__name:=gazebo" in cmd and master
-                        and master[0].rstrip(b"/").endswith(b":%d" % self.port)):
-                    return int(pid)
-            time.sleep(0.2)
-        raise RuntimeError("sim process not found")
+        """The pid of this run's sim node, waiting up to ``timeout`` wall s for it."""
+        pid = wait_for(self._find_sim, timeout, 0.2)
+        if pid is None:
+            raise RuntimeError("sim process not found")
+        return pid
+
+    def _find_sim(self):
+        """The pid of the node named gazebo on this run's master (None if none yet)."""
+        for pid in os.listdir("/proc"):
+            if not pid.isdigit():
+                continue
+            try:
+                with open("/proc/%s/cmdline" % pid, "rb") as f:
+                    cmd = f.read().split(b"\0")
+                with open("/proc/%s/environ" % pid, "rb") as f:
+                    env = f.read().split(b"\0")
+            except OSError:
+                continue
+            master = [e for e in env if e.startswith(b"ROS_MASTER_URI=")]
+            if (b"__name:=gazebo" in cmd and master
+                    and master[0].rstrip(b"/").endswith(b":%d" % self.port)):
+                return int(pid)
+        return None
 
     def stop(self):
+        """SIGINT to every process group at once (roslaunch and the helpers end together),
+        then stop_process each (SIGTERM, SIGKILL if it has not ended within STOP_WAIT s)."""
         for proc in reversed(self.procs):
-            if proc.poll() is None:
-                try:
-                    os.killpg(proc.pid, signal.SIGINT)
-                except ProcessLookupError:
-                    pass
+            signal_process(proc, signal.SIGINT)
         for proc in reversed(self.procs):
-            wait_or_kill(proc)
-
-
-def wait_or_kill(proc, timeout=15.0):
-    """Wait for ``proc`` to end; SIGKILL its process group (it was started in a session of its
-    own) if it has not within ``timeout`` s."""
-    try:
-        proc.wait(timeout)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait()
-
-
-def stop_process(proc, timeout=15.0):
-    """SIGINT to ``proc``'s process group, then wait_or_kill."""
-    if proc.poll() is None:
-        try:
-            os.killpg(proc.pid, signal.SIGINT)
-        except ProcessLookupError:
-            pass
-    wait_or_kill(proc, timeout)
-
-
-def cpu_seconds(pid) -> float:
-    with open("/proc/%d/stat" % pid) as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+            stop_process(proc, STOP_WAIT, sig=None)
 
 
 def rss_mb(pid) -> float:
-    with open("/proc/%d/status" % pid) as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1]) / 1024.0
-    return float("nan")
+    """Resident memory of process ``pid`` (MB; NaN if it has none)."""
+    kb = rss_kb(pid)
+    return float("nan") if kb is None else kb / 1024.0
 
 
 def read_report(proc):
@@ -459,7 +432,7 @@ class BareMaster:
 
     def stop(self):
         if self.proc is not None:
-            stop_process(self.proc)
+            stop_process(self.proc, STOP_WAIT)
         os.unlink(self.launch_file)
 
 
@@ -494,7 +467,7 @@ def measure_stage_client_floor(seconds=10.0) -> float:
         raise RuntimeError("stage_client.py --steps-only said nothing")
     finally:
         for proc in procs:
-            stop_process(proc)
+            stop_process(proc, STOP_WAIT)
         bare.stop()
 
 
@@ -664,7 +637,7 @@ def robots_bound(count, world="empty", poses=None, wall_seconds=3.0):
 def render_times(frames=10):
     """Median ms per rendered frame at each RESOLUTIONS size, with EGL (where it loads) and
     with TinyRenderer, from the Waffle Pi's camera pose at the turtlebot3_world spawn."""
-    from tutorial_turtlebot.sim.devices.camera import CameraRenderer
+    from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
     from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
     from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
     results = {}
@@ -903,7 +876,7 @@ def mesh_world_physics(world, models, sim_seconds=4.0, rounds=4):
     cpu = {}
     try:
         for sim in sims.values():
-            sim.command(0.1, 0.3)
+            sim.robot.command(0.1, 0.3)
             for _ in range(400):
                 sim.step()
         steps = int(round(sim_seconds / rounds / 0.0025))

@@ -1,8 +1,9 @@
 """The three TurtleBot3 models: what no URDF holds (doc/turtlebot3.md 2.5).
 
 A robot's drive, laser, IMU and camera come from its URDF's ``<gazebo>`` blocks
-(``robot_plugins``); what is here is the firmware's and turtlebot3_teleop_key's speed limits and
-which URDF file each model is. Units: m/s, rad/s.
+(``sim.files.robot_plugins``); what is here is the firmware's and turtlebot3_teleop_key's speed
+limits, the circle each model sweeps turning in place, and which URDF file each model is. The
+simulator and the lab's nodes both read these facts here. Units: m, m/s, rad/s.
 """
 import re
 from dataclasses import dataclass
@@ -20,6 +21,9 @@ class ModelSpec:
     name: str
     max_linear: float           # m/s, firmware / teleop limit
     max_angular: float          # rad/s
+    # m: the circle it sweeps turning in place about base_footprint, the farthest corner of its
+    # navigation footprint (doc/turtlebot3.md 1.1), rounded up
+    turn_radius: float
     carries_camera: bool        # False: camera:=true picks the AutoRace variant's URDF
 
     @property
@@ -29,9 +33,9 @@ class ModelSpec:
 
 
 MODELS = {
-    "burger": ModelSpec("burger", 0.22, 2.84, carries_camera=False),
-    "waffle": ModelSpec("waffle", 0.26, 1.82, carries_camera=True),
-    "waffle_pi": ModelSpec("waffle_pi", 0.26, 1.82, carries_camera=True),
+    "burger": ModelSpec("burger", 0.22, 2.84, 0.15, carries_camera=False),
+    "waffle": ModelSpec("waffle", 0.26, 1.82, 0.26, carries_camera=True),
+    "waffle_pi": ModelSpec("waffle_pi", 0.26, 1.82, 0.26, carries_camera=True),
 }
 
 MODEL_NAMES: Tuple[str, ...] = tuple(MODELS)
@@ -61,6 +65,13 @@ def model_limits(name: str) -> Tuple[float, float]:
     name gets the burger limits."""
     spec = MODELS.get(name, MODELS["burger"])
     return spec.max_linear, spec.max_angular
+
+
+def turn_radius(name: str) -> float:
+    """The turn radius (m) of model ``name``; the largest of them for an unknown name (the
+    safe side)."""
+    spec = MODELS.get(name)
+    return spec.turn_radius if spec else max(m.turn_radius for m in MODELS.values())
 
 
 def turtlebot3_model_of(robot_name: str) -> Optional[str]:

@@ -1,12 +1,15 @@
 """Helpers for the rostest nodes: wait on wall time (a stalled /clock must fail a test, never
 hang it), collect messages, read and make poses, call /gazebo's services, run the package's
 nodes as a user does (on a pipe or on a pseudo-terminal). Imported by the test_*.py nodes
-beside it (rostest runs them from this folder, so it is first on their sys.path)."""
+beside it (rostest runs them from this folder, so it is first on their sys.path). The process
+helpers (free_port, stop_process, cpu_seconds, rss_kb) come from test/process_helpers.py, shared
+with the unit tests and the bench, and are imported from here."""
+import functools
 import math
 import os
 import signal
-import socket
 import subprocess
+import sys
 import termios
 import threading
 import time
@@ -22,6 +25,10 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
+import process_helpers  # noqa: E402
+from process_helpers import cpu_seconds, free_port, rss_kb, stop_process  # noqa: E402,F401
 
 
 def yaw_of(q) -> float:
@@ -70,28 +77,15 @@ def box_outside_arena(x: float, y: float, yaw: float) -> float:
                for cx, cy in BURGER_BOX_CORNERS)
 
 
-def wait_for(predicate, timeout: float, step: float = 0.02) -> bool:
-    """Poll ``predicate`` until true or ``timeout`` wall seconds pass (or the node is shut
-    down, e.g. because rostest is tearing down after the sim died)."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline and not rospy.is_shutdown():
-        if predicate():
-            return True
-        time.sleep(step)
-    return predicate()
+# wait_for(predicate, timeout wall s, step s): also gives up once the node is shut down (e.g.
+# because rostest is tearing down after the sim died)
+wait_for = functools.partial(process_helpers.wait_for, give_up=rospy.is_shutdown)
 
 
 def publishers(topic: str):
     """The nodes publishing ``topic``, as the master lists them."""
     state = rosgraph.Master("/test").getSystemState()
     return next((nodes for name, nodes in state[0] if name == topic), [])
-
-
-def free_port() -> int:
-    """A local port where nothing listens (bound, then closed)."""
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 class Recorder:
@@ -234,19 +228,6 @@ def executable(name: str, package: str = "tutorial_turtlebot") -> str:
     if not found:
         raise RuntimeError("no executable %r in package %s" % (name, package))
     return found[0]
-
-
-def stop_process(proc, timeout: float = 20.0) -> None:
-    """Stop a subprocess.Popen as Ctrl-C does (SIGINT, after SIGCONT in case it was
-    suspended); kill it if it is still there after ``timeout`` wall s."""
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGCONT)
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(timeout)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(10.0)
 
 
 class NodeProcess:

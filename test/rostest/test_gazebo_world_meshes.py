@@ -23,7 +23,7 @@ def reference_scan(x, y, yaw):
     try:
         for _ in range(200):
             sim.step()
-        return np.array(sim.scan(), dtype=float)
+        return np.array(sim.robot.scan(), dtype=float)
     finally:
         sim.close()
 

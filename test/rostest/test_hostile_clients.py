@@ -35,20 +35,13 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
-from sim_test_support import WAIT, NodeProcess, Recorder, executable, wait_for
+from sim_test_support import (WAIT, NodeProcess, Recorder, executable, free_port, rss_kb,
+                              wait_for)
 
 ANSWER = 1.0          # s: the longest a service may take while the sim is under attack
 STOP = 2.0            # s: the longest from SIGINT to the sim's exit
-RSS_GROWTH = 8 << 20  # bytes the sim may grow by under attack
+RSS_GROWTH = 8 << 10  # KB the sim may grow by under attack
 SLOWEST_FACTOR = 0.01
-
-
-def rss_of(pid: int) -> int:
-    with open("/proc/%d/status" % pid) as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1]) * 1024
-    raise RuntimeError("no VmRSS")
 
 
 def sim_pid_and_port():
@@ -154,7 +147,7 @@ class HostileClientsTest(unittest.TestCase):
 
     def test_hostile_connections_lock_nobody_out(self):
         pid, address = sim_pid_and_port()
-        rss_before = rss_of(pid)
+        rss_before = rss_kb(pid)
         attack = Attack(address)
         try:
             attack.half_open(15)
@@ -170,10 +163,10 @@ class HostileClientsTest(unittest.TestCase):
             self.assertTrue(attack.stream_ended.wait(10.0), "the 100 MB header is still read")
             self.assertLess(attack.streamed, 20_000_000,
                             "the sim read %d bytes of a 100 MB header" % attack.streamed)
-            rss_during = rss_of(pid)
+            rss_during = rss_kb(pid)
             rospy.loginfo("under attack: service %.3f s, first /odom %.3f s, header streamed "
                           "%d bytes, RSS %+.1f MB", took, first_odom, attack.streamed,
-                          (rss_during - rss_before) / 2**20)
+                          (rss_during - rss_before) / 1024.0)
             # Held open past the time limit: closed by the sim, and the others still pass.
             time.sleep(2.5)
             for sock in attack.socks[:20]:
@@ -183,11 +176,11 @@ class HostileClientsTest(unittest.TestCase):
                 except ConnectionResetError:
                     pass
             attack.half_open(20)
-            self.assertLess(rss_of(pid) - rss_before, RSS_GROWTH)
+            self.assertLess(rss_kb(pid) - rss_before, RSS_GROWTH)
             self.assert_answers("20 more stalled connections")
         finally:
             attack.close()
-        self.assertLess(rss_of(pid) - rss_before, RSS_GROWTH)
+        self.assertLess(rss_kb(pid) - rss_before, RSS_GROWTH)
 
     # --- pace ----------------------------------------------------------------------------------
 
@@ -281,9 +274,7 @@ class OwnSim:
     """A sim of its own on its own master (``rosmaster --core`` on a free port)."""
 
     def __init__(self, *args):
-        with socket.socket() as s:
-            s.bind(("127.0.0.1", 0))
-            port = s.getsockname()[1]
+        port = free_port()
         self.env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port)
         self.master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=self.env,
                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

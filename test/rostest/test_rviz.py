@@ -32,7 +32,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from sim_test_support import Driver, stop_process, wait_for
+from sim_test_support import Driver, cpu_seconds, stop_process, wait_for
 
 WAIT = 90.0  # wall s for start-up: the sim, robot_state_publisher and RViz on a busy machine
 BACKGROUND = (48, 48, 48)  # Global Options/Background Color of rviz/turtlebot3*.rviz
@@ -68,13 +68,6 @@ def start_xvfb():
         proc.kill()
         raise RuntimeError("Xvfb did not start: %s" % proc.stderr.read().decode(errors="replace"))
     return proc, ":" + number.decode().strip()
-
-
-def cpu_seconds(pid):
-    """User + system CPU seconds used so far by process ``pid``."""
-    with open("/proc/%d/stat" % pid) as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def node_pid(name):

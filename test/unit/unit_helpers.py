@@ -2,13 +2,19 @@
 beside this file). Tests import it by name, ``from unit_helpers import at, run``: there is no
 __init__.py in test/unit, so pytest puts this folder first on sys.path for every test file it
 collects here, whether it runs the folder or one file. The package is imported where it is
-used: a module of it that fails to import fails only the tests that need it."""
+used: a module of it that fails to import fails only the tests that need it. The process
+helpers (free_port, stop_process, cpu_seconds, wait_for) are test/process_helpers.py's, shared
+with the rostests and the bench, and are imported from here too."""
 import gc
 import math
 import os
-import socket
+import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
+import process_helpers  # noqa: E402
+from process_helpers import cpu_seconds, free_port, stop_process, wait_for  # noqa: E402,F401
 
 ROBOT = "turtlebot3_burger"   # the robot's model name in a Simulation of model burger
 
@@ -67,13 +73,6 @@ def write(folder, name, text):
     with open(path, "w") as f:
         f.write(text)
     return path
-
-
-def free_port() -> int:
-    """A local port where nothing listens (bound, then closed)."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 # --- synthetic laser scans ---------------------------------------------------------------------
@@ -145,8 +144,4 @@ def world_fault(path):
 def rss_kb() -> int:
     """This process's resident memory (KB), after a garbage collection."""
     gc.collect()
-    with open("/proc/self/status") as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    raise AssertionError("no VmRSS")
+    return process_helpers.rss_kb()

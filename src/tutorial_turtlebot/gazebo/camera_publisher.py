@@ -62,7 +62,7 @@ class CameraPublisher:
             self.info_pubs += pubs(CameraInfo, sensor.depth_info_topic)
             self.points_pubs = pubs(PointCloud2, sensor.point_cloud_topic)
         frame = frame_prefix + sensor.frame.lstrip("/")
-        self.info = camera_info(robot.camera.intrinsics, spec.width, spec.height, frame)
+        self.info = camera_info(robot.camera_intrinsics, spec.width, spec.height, frame)
         self.image = Image(height=spec.height, width=spec.width, encoding="rgb8",
                            is_bigendian=0, step=3 * spec.width)
         self.image.header.frame_id = frame
@@ -108,7 +108,7 @@ class CameraPublisher:
             self._publish_points(stamp, rgb, depth, points)
 
     def _publish_points(self, stamp, rgb, depth, pubs) -> None:
-        xyz, colours = pointcloud_xyz(depth, self.robot.camera.intrinsics, organized=True,
+        xyz, colours = pointcloud_xyz(depth, self.robot.camera_intrinsics, organized=True,
                                       rgb=rgb)
         data, point_step, fields = pointcloud_bytes(xyz, colours)
         msg = self.points

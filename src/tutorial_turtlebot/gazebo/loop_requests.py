@@ -6,6 +6,8 @@ action returned or raised. If the loop has not started the action within the cal
 action is taken back: it never runs, so a client told "did not answer" can rely on nothing
 having happened. An action the loop has started is always waited for and answered (the loop
 holds each one to a bounded amount of work). ``put`` queues without waiting (topic callbacks).
+``put`` is the one place that queues work for the loop and wakes it; ``call`` is ``put`` and a
+wait. Times (``timeout``, ANSWER_TIMEOUT) in wall seconds.
 """
 import queue
 import threading
@@ -38,6 +40,16 @@ class LoopRequests:
 
     def __bool__(self) -> bool:
         return not self._queue.empty()
+
+    def wait(self, timeout: float) -> None:
+        """In the loop: wait until a request is queued or ``timeout`` s have passed, and be
+        ready for the next wake-up."""
+        self.wake.wait(timeout)
+        self.wake.clear()
+
+    def clear_wake(self) -> None:
+        """In the loop, before it reads the queue: a request queued later wakes it again."""
+        self.wake.clear()
 
     def put(self, action: Callable) -> _Request:
         """Queue ``action()`` for the loop and wake it; return at once."""

@@ -12,9 +12,8 @@ Publications (relative names resolve in the node's namespace, as Gazebo's plugin
   (sim.launch's robot in the node's namespace: odom, joint_states, scan, imu, camera/...,
   subscribing cmd_vel; one spawned with robot_namespace tb3_0: /tb3_0/odom, ...)
   A message type nobody subscribes to is not even computed.
-Services (std_srvs/Empty):
-  ~reset_simulation (time back to 0, robot to spawn), ~reset_world (robot to spawn),
-  ~pause_physics, ~unpause_physics
+Services: ~reset_simulation, ~reset_world, ~pause_physics, ~unpause_physics and the rest of
+  Gazebo's world API: see world_api (which reaches the node through its public methods)
 Parameters (private):
   ~model (burger)             burger, waffle or waffle_pi
   ~spawn_robot (true)         false: no robot of its own; robots come by spawn_urdf_model
@@ -55,44 +54,33 @@ import rospy.impl.simtime
 from rosgraph_msgs.msg import Clock
 from tf2_msgs.msg import TFMessage
 from rospy.rostime import _set_rostime
-from std_srvs.srv import Empty, EmptyResponse
 
 from .impl import tcpros_guard, unreachable_publishers
-from .loop_requests import ANSWER_TIMEOUT, LoopRequests, NotAnswered
+from .loop_pacer import WAKE_CHECK, LoopPacer
+from .loop_requests import ANSWER_TIMEOUT, LoopRequests
 from .impl.master_watch import MasterWatch
 from .world_api import WorldApi
 from ..errors import UserError, one_line
 from ..node_output import line_buffered
 from ..sim.kinematics import yaw_from_quat
-from .impl.nonblocking_publisher import Backlog, make_nonblocking
+from .impl.nonblocking_publisher import make_nonblocking
 from .impl.packed_messages import PackedClock
 from . import part_times
 from .part_times import TIMES
-from ..sim.world.pacing import Pacer, check_rtf
+from ..sim.world.pacing import check_rtf
 from .robot_topics import RobotTopics
+from .send_queue import SendQueue
 from .single_instance import refuse_if_running
 from ..sim.world.simulation import SimConfig, Simulation
 from ..sim.world.world_models import RequestError
 from ..sim.files.world_sdf import world_from_command_line
 
 SHUTDOWN_CHECK_STEPS = 200
-# The longest the loop sleeps (wall s) without looking at Ctrl-C and ROS shutdown; a request
-# (a service call, a topic's command) wakes it at once, however slow the pace.
-WAKE_CHECK = 0.1
-# Sleeps shorter than this (wall s) are plain sleeps, which a request does not cut short (it
-# waits at most this long): at real time every sleep is one, and costs half the CPU of a wait.
-SHORT_SLEEP = 0.025
 # The longest (wall s) the loop keeps the GIL while another thread of the node waits for it:
 # rospy's threads (a subscriber's handshake, a service call, the master's calls) take their
 # turn this soon, as fast as possible too, when the loop no longer lets go of the GIL at every
 # socket write (Python's default: 5 ms).
 GIL_SWITCH_INTERVAL = 0.0005
-# As fast as possible, what the steps make leaves at most this long (wall s) after it is made,
-# a subscriber's messages of that time in one write: a write and a wake-up of the subscriber
-# per message cost more than the physics. What clients wait for, step by step (a scan, a camera
-# frame), leaves at once, with everything made before it.
-SEND_GAP = 0.002
-SEND_AT_ONCE = ("scan", "camera")
 # As fast as possible, pybullet casts a laser's rays on this many threads (WorldPhysics.
 # ray_threads): the same hits, a 360-ray scan in about 60 % of the wall time.
 FAST_RAY_THREADS = 2
@@ -115,19 +103,25 @@ def _param(name, default, kind, allow_empty=False):
     if allow_empty and (value is None or (isinstance(value, str) and value.strip() == "")):
         return None
     try:
-        if kind is bool:
-            if isinstance(value, str) and value.lower() in ("true", "false"):
-                return value.lower() == "true"
-            if isinstance(value, bool):
-                return value
-            raise ValueError
-        if kind is float and isinstance(value, bool):
-            raise ValueError
-        if kind is int and not float(value).is_integer():
-            raise ValueError
-        return kind(value)
+        return _converted(value, kind)
     except (TypeError, ValueError):
         raise UserError("parameter ~%s: %r is not a %s" % (name, value, kind.__name__)) from None
+
+
+def _converted(value, kind):
+    """``value`` as a ``kind``: a bool only from a bool or "true"/"false" (any case), a float
+    not from a bool, an int only from a whole number; TypeError or ValueError if it is not."""
+    if kind is bool:
+        if isinstance(value, str) and value.lower() in ("true", "false"):
+            return value.lower() == "true"
+        if isinstance(value, bool):
+            return value
+        raise ValueError
+    if kind is float and isinstance(value, bool):
+        raise ValueError
+    if kind is int and not float(value).is_integer():
+        raise ValueError
+    return kind(value)
 
 
 def read_config() -> SimConfig:
@@ -154,44 +148,81 @@ def read_config() -> SimConfig:
 
 
 class SimNode:
-    """Converts between the Simulation and ROS messages, and runs the stepping loop."""
+    """Converts between the Simulation and ROS messages, and runs the stepping loop (``spin``).
+
+    The loop's three helpers, each in its own module: the request queue (``requests``,
+    loop_requests.LoopRequests: service and topic threads hand it work and wait for the answer),
+    the pacer (``pacer``, loop_pacer.LoopPacer: when the next step may run on the wall clock)
+    and the send queue (``sends``, send_queue.SendQueue: each step's messages, written when due
+    without blocking). world_api uses the public methods below, never the attributes behind
+    them."""
 
     def __init__(self, sim: Simulation, real_time_factor: float, paused: bool,
                  status_period: float, pub_clock_frequency: float = 1000.0):
         self.sim = sim
-        self.pacer = Pacer(real_time_factor)
-        self.paused = paused
-        self.status_period = status_period
-        # /clock's least wall-time gap (s): Gazebo's ~pub_clock_frequency; 0 = none
-        self.clock_gap = 1.0 / pub_clock_frequency if pub_clock_frequency > 0 else 0.0
-        self._next_clock_wall = -math.inf
-        self.clock_packed = PackedClock()
-        self.part_times_path = part_times.report_path()
         self.requests = LoopRequests()   # what callbacks hand to the loop, and its wake-up
         self.stop_requested = False  # set by the SIGINT/SIGTERM handler of main()
+        self.pacer = LoopPacer(real_time_factor, self.requests.wake, self._stopping,
+                               pub_clock_frequency)
+        self.paused = paused   # read by get_physics_properties; set by pause() and unpause()
+        self.status_period = status_period
+        self._next_status = self._next_report = 0.0   # wall s (set by spin)
+        self.clock_packed = PackedClock()
+        self.part_times_path = part_times.report_path()
         # Every message is written from this loop without a thread switch, and a subscriber
         # that stops reading loses old messages instead of stalling the simulation.
-        self.backlog = Backlog()
-        self.clock_pub = self._publisher("/clock", Clock)
+        self.sends = SendQueue()
+        self.clock_pub = self.advertise("/clock", Clock)
         # tf2_ros.TransformBroadcaster's publisher (the transforms are packed_messages')
-        self.tf_pub = self._publisher("/tf", TFMessage, queue_size=100)
+        self.tf_pub = self.advertise("/tf", TFMessage, queue_size=100)
         self.publishers = {"clock": self._publish_clock}   # the world's outputs
         self.robot_topics = {}                               # robot name -> RobotTopics
         self._topics = []
         self._output_errors = {}   # (robot, output) -> the wall time its next error is logged
         self.sync_robots()
-        for name, action in (("reset_simulation", sim.reset_simulation),
-                             ("reset_world", sim.reset_world),
-                             ("pause_physics", self._pause), ("unpause_physics", self._unpause)):
-            rospy.Service("~" + name, Empty, self._service_handler(name, action))
-        # Gazebo's world API: model/link states, spawn, delete, physics (gazebo/world_api.py);
-        # advertised after every sensor topic (test_camera.py waits for it as the last).
+        # Gazebo's world API: reset, pause, model/link states, spawn, delete, physics
+        # (gazebo/world_api.py); advertised after every sensor topic (test_camera.py waits for
+        # it as the last).
         self.world_api = WorldApi(self, _param("model_states_rate", 100.0, float))
 
-    def _publisher(self, topic, msg_type, queue_size=1) -> rospy.Publisher:
+    # --- the node's public API (world_api) ------------------------------------------------------
+
+    def advertise(self, topic: str, msg_type, queue_size: int = 1) -> rospy.Publisher:
+        """A publisher whose messages go through the send queue: written from the loop without
+        blocking (a subscriber that stops reading loses old messages)."""
         publisher = rospy.Publisher(topic, msg_type, queue_size=queue_size)
-        make_nonblocking(publisher, self.backlog)
+        make_nonblocking(publisher, self.sends)
         return publisher
+
+    def add_output(self, name: str, publish) -> None:
+        """``publish(stamp)`` is called in the loop whenever the simulation reports the world
+        output ``name`` due (Simulation.add_schedule)."""
+        self.publishers[name] = publish
+
+    def run_in_loop(self, action, timeout: float = ANSWER_TIMEOUT):
+        """Run ``action()`` in the loop between two steps and return what it returned (or raise
+        what it raised); loop_requests.NotAnswered if the loop did not start it within
+        ``timeout`` wall s (then it never runs). From any thread but the loop's."""
+        return self.requests.call(action, timeout)
+
+    def queue_in_loop(self, action) -> None:
+        """Run ``action()`` in the loop between two steps; return at once (its result and
+        exceptions are dropped: ``action`` handles its own)."""
+        self.requests.put(action)
+
+    def pause(self) -> None:
+        """In the loop: stop stepping (requests are still answered)."""
+        self.paused = True
+
+    def unpause(self) -> None:
+        """In the loop: step again, from now on the wall clock (paused time is not owed)."""
+        self.paused = False
+        self.pacer.restart(self.sim.time)
+
+    def set_real_time_factor(self, rtf: float) -> None:
+        """In the loop: pace at ``rtf`` sim s per wall s from now on (0 = as fast as possible);
+        ValueError if it is below pacing.MIN_REAL_TIME_FACTOR."""
+        self.pacer.set_rtf(rtf, self.sim.time)
 
     def sync_robots(self) -> None:
         """Give every robot of the simulation its topics, and take them from robots that are
@@ -204,9 +235,9 @@ class SimNode:
         for name, robot in list(self.sim.robots.items()):
             if name not in self.robot_topics:
                 try:
-                    self.robot_topics[name] = RobotTopics(robot, self._publisher, self.tf_pub)
+                    self.robot_topics[name] = RobotTopics(robot, self.advertise, self.tf_pub)
                 except Exception as err:  # noqa: BLE001 - one robot must not end the node
-                    self.sim.models.remove(name)
+                    self.sim.remove_model(name)
                     failed = failed or RequestError("robot %r: its topics could not be made: %s"
                                                     % (name, one_line(err)))
                     continue
@@ -252,167 +283,138 @@ class SimNode:
     def _publish_clock(self, stamp) -> None:
         # The sim's own rospy time follows its clock directly (see main: no /clock round trip).
         _set_rostime(stamp)
-        if self.clock_gap:   # Gazebo's throttle, by the wall time the message leaves at
-            pacer = self.pacer
-            wall = pacer.wall_of(self.sim.time) if pacer.rtf > 0 else time.monotonic()
-            if wall < self._next_clock_wall:
-                return
-            self._next_clock_wall = wall + self.clock_gap
+        if not self.pacer.clock_due(self.sim.time):   # Gazebo's ~pub_clock_frequency
+            return
         TIMES.switch("serializing")
         self.clock_packed.write(stamp.secs, stamp.nsecs)
         self.clock_pub.publish_packed(self.clock_packed)
 
+    def _restart_clock(self) -> None:
+        """At start and after reset_simulation: pace from the sim time now, and everyone sees
+        it at once (/clock goes whatever ~pub_clock_frequency's gap)."""
+        self.pacer.restart(self.sim.time)
+        self.pacer.clock_anew()
+        self._publish_due([(None, "clock")])
+
     # --- input -----------------------------------------------------------------------------------
 
-    def _service_handler(self, name, action):
-        """An Empty service (reset, pause) whose action runs in the loop. A failure is a
-        service error that says what happened: the loop did not start it in time (then it never
-        runs), or the action raised (named in one line)."""
-        def handle(_request):
-            try:
-                self.requests.call(action, ANSWER_TIMEOUT)
-            except NotAnswered:
-                raise rospy.ServiceException(
-                    "%s: the simulation loop did not answer within %g s; nothing was done"
-                    % (name, ANSWER_TIMEOUT)) from None
-            except Exception as err:  # noqa: BLE001 - named to the caller, the loop goes on
-                rospy.logerr("%s: internal error: %s", name, one_line(err))
-                raise rospy.ServiceException("%s: internal error: %s"
-                                             % (name, one_line(err))) from None
-            return EmptyResponse()
-        return handle
-
-    def _pause(self) -> None:
-        self.paused = True
-
-    def _unpause(self) -> None:
-        self.paused = False
-        self.pacer.restart(self.sim.time)  # paused time is not owed
-
-    def _handle_requests(self) -> None:
+    def _run_requests(self) -> None:
         """Run the requests queued by service and topic callbacks, between two steps."""
         before = [self.sim.time_ns]
 
         def after_each():
             if self.sim.time_ns != before[0]:  # reset_simulation: everyone sees the new time now
-                self.backlog.send_due()          # after what was made before it
-                self.pacer.restart(self.sim.time)
-                self._next_clock_wall = -math.inf
-                self._publish_due([(None, "clock")])
+                self.sends.send_due()          # after what was made before it
+                self._restart_clock()
                 before[0] = self.sim.time_ns
         self.requests.run_pending(after_each)
+        self._use_ray_threads()   # set_physics_properties may have changed the pace
+
+    def _use_ray_threads(self) -> None:
+        """As fast as possible a scan's rays use the second core too (the wall time is what
+        counts); at a pace, one thread (the CPU is what counts)."""
+        self.sim.physics.ray_threads = 1 if self.pacer.rtf > 0 else FAST_RAY_THREADS
+
+    def _apply_commands(self) -> None:
+        """Hand each robot the cmd_vel that came since the last step."""
+        for topics in self._topics:
+            if topics.command is not None:
+                topics.apply_command()
+
+    def _stopping(self) -> bool:
+        """Whether the node is to stop (Ctrl-C or ROS shut down); it stops from now on."""
+        if self.stop_requested or rospy.is_shutdown():
+            self.stop_requested = True
+        return self.stop_requested
 
     # --- loop ------------------------------------------------------------------------------------
 
     def spin(self) -> None:
-        """Step, publish and pace until ROS shuts down."""
-        sim, pacer, backlog, times = self.sim, self.pacer, self.backlog, TIMES
-        pacer.restart(sim.time)
-        self._publish_due([(None, "clock")])
-        next_status = time.monotonic() + self.status_period
-        next_report = next_send = time.monotonic()
-        steps = 0
-        while True:
+        """Step, publish and pace until ROS shuts down. Each turn: a look around (ROS shutdown,
+        status, part times) once every SHUTDOWN_CHECK_STEPS turns and every turn while paused;
+        the queued requests (requests); one physics step; its messages, sent when due (sends;
+        as fast as possible gathered a SEND_GAP); at a pace, a sleep once the batch of steps
+        ran far enough ahead (pacer)."""
+        sim, pacer, sends, requests, times = self.sim, self.pacer, self.sends, self.requests, TIMES
+        publish_due, apply_commands = self._publish_due, self._apply_commands
+        self._restart_clock()
+        self._use_ray_threads()
+        self._next_status = time.monotonic() + self.status_period
+        self._next_report = time.monotonic()
+        steps = SHUTDOWN_CHECK_STEPS - 1   # the first turn looks around
+        while not self.stop_requested:
             steps += 1
-            if self.stop_requested:
+            if steps % SHUTDOWN_CHECK_STEPS == 0 and not self._look_around():
                 break
-            if steps % SHUTDOWN_CHECK_STEPS == 0 or self.paused:
-                if rospy.is_shutdown():
-                    break
-                if self.status_period > 0 and time.monotonic() >= next_status:
-                    next_status = time.monotonic() + self.status_period
-                    self._log_status()
-                if self.part_times_path and time.monotonic() >= next_report:
-                    next_report = time.monotonic() + 1.0
-                    self._report_part_times()
-            if self.requests:
-                backlog.send_due()   # a caller sees every message made before its answer
-                self._handle_requests()
-            if backlog:
-                backlog.flush()
-            paced = pacer.rtf > 0  # set_physics_properties may change it at any request
-            # as fast as possible a scan's rays use the second core too (the wall time is what
-            # counts); at a pace, one thread (the CPU is what counts)
-            sim.physics.ray_threads = 1 if paced else FAST_RAY_THREADS
-            if paced and backlog.next_due() is not None:
-                backlog.send_due(time.monotonic())
+            if requests:
+                sends.send_due()   # a caller sees every message made before its answer
+                self._run_requests()
+            if sends:
+                sends.flush()
             if self.paused:
-                backlog.send_due()
-                self.requests.wake.wait(0.1)
-                self.requests.wake.clear()
-                pacer.restart(sim.time)
+                self._wait_paused()
+                steps = SHUTDOWN_CHECK_STEPS - 1   # while paused every turn looks around
                 continue
+            # the pace: set_physics_properties may change it at any request
+            if pacer.rtf <= 0:   # as fast as possible: sent together, once a SEND_GAP
+                times.switch("physics")
+                apply_commands()
+                sends.send_gathered(publish_due, sim.step())
+                continue
+            sends.send_due_now()
             times.switch("physics")
-            for topics in self._topics:
-                if topics.command is not None:
-                    topics.apply_command()
+            apply_commands()
             due = sim.step()
-            if not paced:   # as fast as possible: sent together, once a SEND_GAP
-                at_once = False
-                if due:
-                    backlog.hold()
-                    self._publish_due(due)
-                    backlog.keep_until(0.0)
-                    at_once = any(name in SEND_AT_ONCE for _, name in due)
-                times.switch("other")
-                if backlog.next_due() is not None:
-                    now = time.monotonic()
-                    if at_once or now >= next_send:
-                        backlog.send_due()
-                        next_send = now + SEND_GAP
-                continue
             if due:  # made now, sent when due on the wall clock
-                backlog.hold()
-                self._publish_due(due)
-                backlog.keep_until(pacer.wall_of(sim.time))
+                sends.keep(publish_due, due, pacer.wall_of(sim.time))
             times.switch("other")
             batch_end = pacer.batch_end(sim.time)
             if batch_end is not None:
                 self._send_on_time_until(batch_end)
+
+    def _look_around(self) -> bool:
+        """False once ROS shut down; else the status line and the part times when they are due
+        (once every SHUTDOWN_CHECK_STEPS turns, and every turn while paused)."""
+        if rospy.is_shutdown():
+            return False
+        if self.status_period > 0 and time.monotonic() >= self._next_status:
+            self._next_status = time.monotonic() + self.status_period
+            self._log_status()
+        if self.part_times_path and time.monotonic() >= self._next_report:
+            self._next_report = time.monotonic() + 1.0
+            self._report_part_times()
+        return True
+
+    def _wait_paused(self) -> None:
+        """Paused: send everything made, wait for a request (at most WAKE_CHECK wall s) and owe
+        no wall time for the wait."""
+        self.sends.send_due()
+        self.requests.wait(WAKE_CHECK)
+        self.pacer.restart(self.sim.time)
 
     def _send_on_time_until(self, wall_time: float) -> None:
         """Sleep until ``wall_time`` (the clock), sending each kept group of messages at its
         moment on the way: physics runs in batches, messages leave when their stamps are due.
         Requests that come meanwhile are run at once, and the batch's end is worked out again
         after them (they may pause, reset or change the pace); Ctrl-C ends the sleep."""
-        pacer, backlog = self.pacer, self.backlog
+        pacer, sends = self.pacer, self.sends
         while True:
-            next_due = backlog.next_due()
+            next_due = sends.next_due()
             if next_due is not None and next_due < wall_time:
-                if self._sleep_until(next_due):
-                    backlog.send_due(next_due)
+                if pacer.sleep_until(next_due):
+                    sends.send_due(next_due)
                     continue
-            elif self._sleep_until(wall_time):
+            elif pacer.sleep_until(wall_time):
                 return
             if self.stop_requested:
                 return
-            self.requests.wake.clear()  # before the queue is read: a later request wakes again
-            self._handle_requests()
+            self.requests.clear_wake()  # before the queue is read: a later request wakes again
+            self._run_requests()
             if self.paused:
                 return
             wall_time = pacer.batch_end(self.sim.time)
             if wall_time is None:
                 return
-
-    def _sleep_until(self, wall_time: float) -> bool:
-        """Sleep until the clock reads ``wall_time``: True then; False as soon as a request is
-        queued or the node is to stop."""
-        return TIMES.run("idle", self._sleep, wall_time)
-
-    def _sleep(self, wall_time: float) -> bool:
-        wake = self.requests.wake
-        while True:
-            delay = wall_time - time.monotonic()
-            if delay < Pacer.SHORTEST_SLEEP:
-                return True
-            if delay < SHORT_SLEEP:
-                time.sleep(delay)
-                return True
-            if wake.wait(delay if delay < WAKE_CHECK else WAKE_CHECK):
-                return False
-            if delay >= WAKE_CHECK and (self.stop_requested or rospy.is_shutdown()):
-                self.stop_requested = True
-                return False
 
     def _report_part_times(self) -> None:
         """The loop's time by part so far, into the file TUTORIAL_TURTLEBOT_PART_TIMES names
@@ -448,6 +450,49 @@ def _own_the_clock() -> None:
         rospy.impl.simtime._clock_sub = None
 
 
+def _node_params():
+    """(SimConfig, real_time_factor, paused, status_period, pub_clock_frequency) of the node's
+    private params; UserError (one line) when one is bad. gui:=true without a display runs
+    headless, with a warning."""
+    config = read_config()
+    real_time_factor = _param("real_time_factor", 1.0, float)
+    try:
+        if not math.isfinite(real_time_factor):
+            raise ValueError("real_time_factor must be finite, got %r" % real_time_factor)
+        check_rtf(real_time_factor)
+    except ValueError as err:
+        raise UserError("parameter ~%s" % err) from None
+    paused = _param("paused", False, bool)
+    status_period = _param("status_period", 10.0, float)
+    pub_clock_frequency = _param("pub_clock_frequency", 1000.0, float)
+    if not (pub_clock_frequency >= 0 and math.isfinite(pub_clock_frequency)):
+        raise UserError("parameter ~pub_clock_frequency: %r is not a frequency of 0 (no "
+                        "limit) or more Hz" % pub_clock_frequency)
+    if config.gui and not os.environ.get("DISPLAY"):
+        rospy.logwarn("gazebo: gui:=true but there is no display (DISPLAY is unset): "
+                      "running headless")
+        config.gui = False
+    return config, real_time_factor, paused, status_period, pub_clock_frequency
+
+
+def _log_start(sim: Simulation, config: SimConfig, real_time_factor: float) -> None:
+    """What the world file names but Gazebo would skip, the robot (or none) and the camera."""
+    for warning in sim.world.warnings:
+        rospy.logwarn("gazebo: %s", warning)
+    if sim.robot is not None:
+        rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
+                      config.model, config.world, sim.spawn[0], sim.spawn[1], sim.spawn[3],
+                      config.time_step, real_time_factor or "max")
+    else:
+        rospy.loginfo("%s without a robot (spawn_model adds robots), physics step %g s, "
+                      "real-time factor %s", config.world, config.time_step,
+                      real_time_factor or "max")
+    if sim.robot is not None and sim.robot.camera is not None:
+        spec = sim.robot.camera_spec
+        rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
+                      math.degrees(spec.hfov), spec.rate, sim.robot.camera.renderer_name)
+
+
 def main() -> None:
     """Entry point of ``scripts/sim``."""
     # A second /gazebo would make the master shut the running one down: look before registering.
@@ -469,42 +514,12 @@ def main() -> None:
     unreachable_publishers.install()
     _own_the_clock()
     try:
-        config = read_config()
-        real_time_factor = _param("real_time_factor", 1.0, float)
-        try:
-            if not math.isfinite(real_time_factor):
-                raise ValueError("real_time_factor must be finite, got %r" % real_time_factor)
-            check_rtf(real_time_factor)
-        except ValueError as err:
-            raise UserError("parameter ~%s" % err) from None
-        paused = _param("paused", False, bool)
-        status_period = _param("status_period", 10.0, float)
-        pub_clock_frequency = _param("pub_clock_frequency", 1000.0, float)
-        if not (pub_clock_frequency >= 0 and math.isfinite(pub_clock_frequency)):
-            raise UserError("parameter ~pub_clock_frequency: %r is not a frequency of 0 (no "
-                            "limit) or more Hz" % pub_clock_frequency)
-        if config.gui and not os.environ.get("DISPLAY"):
-            rospy.logwarn("gazebo: gui:=true but there is no display (DISPLAY is unset): "
-                          "running headless")
-            config.gui = False
+        config, real_time_factor, paused, status_period, pub_clock_frequency = _node_params()
         sim = Simulation(config)
     except UserError as err:
         rospy.logfatal("gazebo: %s", err)
         sys.exit(2)
-    for warning in sim.world.warnings:      # what the world file names but Gazebo would skip
-        rospy.logwarn("gazebo: %s", warning)
-    if sim.robot is not None:
-        rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
-                      config.model, config.world, sim.spawn[0], sim.spawn[1], sim.spawn[3],
-                      config.time_step, real_time_factor or "max")
-    else:
-        rospy.loginfo("%s without a robot (spawn_model adds robots), physics step %g s, "
-                      "real-time factor %s", config.world, config.time_step,
-                      real_time_factor or "max")
-    if sim.robot is not None and sim.robot.camera is not None:
-        spec = sim.camera_spec
-        rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
-                      math.degrees(spec.hfov), spec.rate, sim.camera.renderer_name)
+    _log_start(sim, config, real_time_factor)
     try:
         node = SimNode(sim, real_time_factor, paused, status_period, pub_clock_frequency)
     except RequestError as err:   # the robot's topics (sync_robots)

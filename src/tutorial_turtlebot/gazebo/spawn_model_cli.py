@@ -372,19 +372,7 @@ class Spawner:
         """Everything after rospy.init_node; the exit status."""
         args = self.args
         try:
-            if args.file is not None:
-                rospy.loginfo("Loading model XML from file %s" % args.file)
-            elif args.stdin:
-                rospy.loginfo("Loading model XML from stdin")
-            else:
-                self.model_xml = self.load_param()
-            if args.wait:
-                self.wait_for_model(args.wait)
-            self.spawn()
-            if args.joints:
-                self.set_joints()
-            if args.unpause:
-                self.unpause()
+            self._spawn_steps()
         except Interrupted:
             rospy.logerr("Interrupted: model %s not spawned" % args.model)
             return EXIT_FAILED
@@ -398,6 +386,24 @@ class Spawner:
         if args.bond:
             self.bond()
         return EXIT_OK
+
+    def _spawn_steps(self) -> None:
+        """The model's text, the wait for -wait's model, the spawn, then -J's joints and
+        -unpause (each raises Interrupted, UserError or OSError to run)."""
+        args = self.args
+        if args.file is not None:
+            rospy.loginfo("Loading model XML from file %s" % args.file)
+        elif args.stdin:
+            rospy.loginfo("Loading model XML from stdin")
+        else:
+            self.model_xml = self.load_param()
+        if args.wait:
+            self.wait_for_model(args.wait)
+        self.spawn()
+        if args.joints:
+            self.set_joints()
+        if args.unpause:
+            self.unpause()
 
 
 def main(argv: Optional[List[str]] = None) -> None:

@@ -15,6 +15,8 @@ Publications (only while subscribed):
 Subscriptions (the services' topic twins; the answer is dropped):
   ~set_model_state (gazebo_msgs/ModelState), ~set_link_state (gazebo_msgs/LinkState)
 Services:
+  ~reset_simulation, ~reset_world, ~pause_physics, ~unpause_physics (std_srvs/Empty; reset:
+  time back to 0 and every model to its spawn; world: models only, time runs on);
   ~get_model_state, ~set_model_state, ~get_link_state, ~set_link_state, ~get_world_properties,
   ~get_model_properties, ~spawn_sdf_model, ~spawn_urdf_model, ~delete_model,
   ~get_physics_properties, ~set_physics_properties, ~apply_body_wrench, ~clear_body_wrenches,
@@ -26,8 +28,9 @@ Services:
   collision_<i>"). The wrench, effort, link, joint and light semantics: sim/world_control.
 Parameters:
   ~model_states_rate (100.0)  Hz of sim time; 0 = never publish model/link states
-Every request runs in the simulation loop between two physics steps (SimNode's request queue)
-and answers within one step; a bad one gets success=false and Gazebo's one-line status.
+Every request runs in the simulation loop between two physics steps (SimNode.run_in_loop,
+SimNode.queue_in_loop) and answers within one step; a bad one gets success=false and Gazebo's
+one-line status. Only the node's public methods and attributes are used.
 """
 import threading
 import time
@@ -51,13 +54,15 @@ from gazebo_msgs.srv import (ApplyBodyWrench, ApplyBodyWrenchResponse, ApplyJoin
                              SetModelState, SetModelStateResponse, SetPhysicsProperties,
                              SetPhysicsPropertiesResponse, SpawnModel, SpawnModelResponse)
 from geometry_msgs.msg import Pose, Twist
+from std_srvs.srv import Empty, EmptyResponse
 
 from .loop_requests import ANSWER_TIMEOUT, NotAnswered
 from ..errors import one_line
 from .part_times import TIMES
 from ..sim.world.physics_properties import OdeConfig, PhysicsProperties
-from ..sim.files.spawn_request import prepare_spawn
+from ..sim.world.spawn_request import prepare_spawn
 from ..sim.world.world_control import RequestError, WorldControl
+from ..sim.world.world_models import spawn_failure
 
 METRICS_PERIOD = 1.0     # wall s between two ~performance_metrics
 JOINT_TYPES = {"revolute": GetJointPropertiesResponse.REVOLUTE,
@@ -134,11 +139,15 @@ class WorldApi:
     def __init__(self, node, model_states_rate: float = 100.0):
         self.node = node
         self.sim = node.sim
+        for name, action in (("reset_simulation", self.sim.reset_simulation),
+                             ("reset_world", self.sim.reset_world),
+                             ("pause_physics", node.pause), ("unpause_physics", node.unpause)):
+            rospy.Service("~" + name, Empty, self._empty_service(name, action))
         self.control = WorldControl(node.sim)
-        self.pubs = {"model_states": node._publisher("~model_states", ModelStates, 10),
-                     "link_states": node._publisher("~link_states", LinkStates, 10)}
+        self.pubs = {"model_states": node.advertise("~model_states", ModelStates, 10),
+                     "link_states": node.advertise("~link_states", LinkStates, 10)}
         if model_states_rate > 0:
-            node.publishers["model_states"] = self._publish_states
+            node.add_output("model_states", self._publish_states)
             self.sim.add_schedule("model_states", model_states_rate)
         rospy.Subscriber("~set_model_state", ModelState, self._on_set_model_state, queue_size=10)
         rospy.Subscriber("~set_link_state", LinkState, self._on_set_link_state, queue_size=10)
@@ -182,7 +191,7 @@ class WorldApi:
         """Run ``action()`` in the simulation loop between two steps; what it returns, or what
         it raised, raised here; loop_requests.NotAnswered if the loop did not start it within
         ANSWER_TIMEOUT (then it never runs)."""
-        return self.node.requests.call(action, ANSWER_TIMEOUT)
+        return self.node.run_in_loop(action, ANSWER_TIMEOUT)
 
     def _in_loop(self, name, srv_type, handler):
         """A service callback that runs ``handler(request)`` in the loop (_answered)."""
@@ -206,8 +215,27 @@ class WorldApi:
             return failure(srv_type, "%s: %s" % (name, problem))
         return call
 
-    def _enqueue(self, action):
-        """Run ``action()`` in the loop without waiting (topic twins of the services)."""
+    def _empty_service(self, name, action):
+        """An Empty service (reset, pause) whose action runs in the loop. A failure is a
+        service error that says what happened: the loop did not start it in time (then it never
+        runs), or the action raised (named in one line)."""
+        def handle(_request):
+            try:
+                self.run_in_loop(action)
+            except NotAnswered:
+                raise rospy.ServiceException(
+                    "%s: the simulation loop did not answer within %g s; nothing was done"
+                    % (name, ANSWER_TIMEOUT)) from None
+            except Exception as err:  # noqa: BLE001 - named to the caller, the loop goes on
+                rospy.logerr("%s: internal error: %s", name, one_line(err))
+                raise rospy.ServiceException("%s: internal error: %s"
+                                             % (name, one_line(err))) from None
+            return EmptyResponse()
+        return handle
+
+    def queue_in_loop(self, action):
+        """Run ``action()`` in the loop without waiting (topic twins of the services, the
+        metrics); a RequestError is a throttled warning, anything else an error line."""
         def run():
             try:
                 action()
@@ -215,7 +243,7 @@ class WorldApi:
                 rospy.logwarn_throttle(5.0, str(err))
             except Exception as err:  # noqa: BLE001
                 rospy.logerr(one_line(err))
-        self.node.requests.put(run)
+        self.node.queue_in_loop(run)
 
     # --- publishing --------------------------------------------------------------------------
 
@@ -257,7 +285,7 @@ class WorldApi:
         return SetModelStateResponse(True, "SetModelState: set model state done")
 
     def _on_set_model_state(self, state: ModelState) -> None:
-        self._enqueue(lambda: self.control.set_model_state(
+        self.queue_in_loop(lambda: self.control.set_model_state(
             state.model_name, pose_in(state.pose), twist_in(state.twist), state.reference_frame))
 
     def _get_link_state(self, req):
@@ -284,7 +312,7 @@ class WorldApi:
         return SetLinkStateResponse(True, "SetLinkState: set link state done")
 
     def _on_set_link_state(self, state: LinkState) -> None:
-        self._enqueue(lambda: self.control.set_link_state(
+        self.queue_in_loop(lambda: self.control.set_link_state(
             state.link_name, pose_in(state.pose), twist_in(state.twist), state.reference_frame))
 
     def _get_world_properties(self, _req):
@@ -331,7 +359,7 @@ class WorldApi:
             self.node.sync_robots()  # a robot URDF: its plugins' topics
         except RequestError as err:
             rospy.logerr("spawn: %s", err)
-            raise RequestError("SpawnModel: Failure - %s" % err) from None
+            raise spawn_failure(str(err)) from None
 
     def _delete_model(self, req):
         try:
@@ -363,7 +391,7 @@ class WorldApi:
     def apply_physics(self, props: PhysicsProperties) -> None:
         """Apply ``props`` (in the loop): the sim's step and engine, then the pacing."""
         self.control.set_physics_properties(props)
-        self.node.pacer.set_rtf(props.real_time_factor, self.sim.time)
+        self.node.set_real_time_factor(props.real_time_factor)
 
     # --- forces, links, joints, lights (run in the loop) ---------------------------------------
 
@@ -498,7 +526,7 @@ class PerformanceMeter:
     def __init__(self, api: WorldApi):
         self.api = api
         self.sim = api.sim
-        self.pub = api.node._publisher("~performance_metrics", PerformanceMetrics, 10)
+        self.pub = api.node.advertise("~performance_metrics", PerformanceMetrics, 10)
         self._last = None           # (wall s, sim ns, {(robot, sensor): (topics, count)})
         self._names = {}            # id(RobotTopics) -> its sensor_names
         threading.Thread(target=self._run, name="performance_metrics", daemon=True).start()
@@ -506,7 +534,7 @@ class PerformanceMeter:
     def _run(self) -> None:
         while not rospy.is_shutdown():
             time.sleep(METRICS_PERIOD)
-            self.api._enqueue(self.tick)
+            self.api.queue_in_loop(self.tick)
 
     def tick(self) -> None:
         """In the loop: snapshot, and publish the rates since the last one if subscribed."""
@@ -537,9 +565,16 @@ class PerformanceMeter:
                 continue
             before = counts0.get((robot, key))
             done = count - (before[1] if before and before[0] is topics else 0)
-            msg.sensors.append(SensorPerformanceMetric(
-                name=names[key], sim_update_rate=done / sim_s if sim_s > 0 else 0.0,
-                real_update_rate=done / wall_s if wall_s > 0 else 0.0,
-                fps=(done / wall_s if wall_s > 0 else 0.0) if key == "camera" else -1.0))
+            msg.sensors.append(_sensor_metric(names[key], key, done, wall_s, sim_s))
         self._names = {k: v for k, v in self._names.items() if k in live}
         return msg
+
+
+def _sensor_metric(name: str, key: str, done: int, wall_s: float,
+                   sim_s: float) -> SensorPerformanceMetric:
+    """``done`` readings of a sensor in ``wall_s`` wall s and ``sim_s`` sim s: its rates (fps
+    for a camera, -1 for the others, as gazebo_ros)."""
+    per_wall_s = done / wall_s if wall_s > 0 else 0.0
+    return SensorPerformanceMetric(name=name, sim_update_rate=done / sim_s if sim_s > 0 else 0.0,
+                                   real_update_rate=per_wall_s,
+                                   fps=per_wall_s if key == "camera" else -1.0)

@@ -9,16 +9,8 @@ from typing import Optional, Tuple
 
 import numpy as np
 
+from ..robot_models import MODELS
 from .scan_reading import bearings, more_open_side, nearest_in_sector, obstacle_ranges
-
-# Radius (m) of the circle a TurtleBot3 sweeps when it turns in place about base_footprint: the
-# farthest corner of its navigation footprint (doc/turtlebot3.md 1.1), rounded up.
-TURN_RADIUS = {"burger": 0.15, "waffle": 0.26, "waffle_pi": 0.26}
-
-
-def turn_radius(model: str) -> float:
-    """TURN_RADIUS of ``model``; the largest one for an unknown model (the safe side)."""
-    return TURN_RADIUS.get(model, max(TURN_RADIUS.values()))
 
 
 class StopAtObstacle:
@@ -70,7 +62,7 @@ class Wander:
 
     def __init__(self, speed: float = 0.2, turn_speed: float = 1.0, stop_distance: float = 0.5,
                  sector: float = math.radians(15.0), clear_margin: float = 0.1,
-                 robot_radius: float = TURN_RADIUS["burger"]):
+                 robot_radius: float = MODELS["burger"].turn_radius):
         self.speed = speed
         self.turn_speed = turn_speed
         self.stop_distance = stop_distance

@@ -35,7 +35,8 @@ import math
 import rospy
 
 from .lab_node import ScanToCommand, fatal, init_node, model_name, number_param
-from .obstacle_logic import FORWARD, Wander, turn_radius
+from ..robot_models import turn_radius
+from .obstacle_logic import FORWARD, Wander
 from ..robot_models import model_limits
 
 

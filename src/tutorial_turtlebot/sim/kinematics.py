@@ -52,6 +52,14 @@ def to_body(q: Sequence[float], v_world: Sequence[float]) -> Tuple[float, float,
             2 * (x * z + y * w) * vx + 2 * (y * z - x * w) * vy + (1 - 2 * (x * x + y * y)) * vz)
 
 
+def cross_2d(o, a, b):
+    """z of the cross product (a - o) x (b - o) of plane points (x, y): > 0 when o, a, b turn
+    counter-clockwise, < 0 clockwise, 0 on one line; twice the signed area of the triangle.
+    Works element-wise on numpy arrays indexed [x, y] first (e.g. the transposes of (N, 2)
+    arrays of points)."""
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
 def wrap_angle(a: float) -> float:
     """Angle wrapped into [-pi, pi)."""
     return (a + math.pi) % (2.0 * math.pi) - math.pi

@@ -19,18 +19,13 @@ class FakePublisher:
         self.sent.append(msg)
 
 
-class FakeCamera:
-    def __init__(self, spec):
-        self.intrinsics = CameraIntrinsics.from_spec(spec)
-
-
 class FakeSim:
     """Counts renders; returns a flat image and a 2 m depth."""
 
     def __init__(self, model):
         self.camera_sensor = read_urdf(urdf_path(model)).plugins.camera
         self.camera_spec = self.camera_sensor.spec
-        self.camera = FakeCamera(self.camera_spec)
+        self.camera_intrinsics = CameraIntrinsics.from_spec(self.camera_spec)
         self.renders = []
 
     def camera_image(self, depth=False):

@@ -72,3 +72,37 @@ def test_put_wakes_the_loop_and_does_not_wait():
     requests.put(lambda: None)
     assert requests and requests.wake.is_set()
     assert requests.run_pending() == 1 and not requests
+
+
+def test_call_wakes_a_waiting_loop_and_returns_the_answer_or_the_error():
+    """The one queue-and-wake helper (put, and call over it): a loop waiting for work
+    (LoopRequests.wait, as when paused) wakes at once, runs it, and the caller gets its answer
+    or its exception."""
+    requests = LoopRequests()
+    woke = []
+
+    def loop():
+        for _ in range(2):
+            start = time.monotonic()
+            requests.wait(5.0)
+            woke.append(time.monotonic() - start)
+            requests.run_pending()
+    thread = threading.Thread(target=loop)
+    thread.start()
+    time.sleep(0.05)
+    assert requests.call(lambda: "answer", 5.0) == "answer"
+    time.sleep(0.05)
+    with pytest.raises(KeyError):
+        requests.call(lambda: {}["missing"], 5.0)
+    thread.join()
+    assert len(woke) == 2 and max(woke) < 1.0
+    assert not requests.wake.is_set()       # cleared: the next wait waits again
+
+
+def test_clear_wake_before_reading_leaves_a_later_request_to_wake_again():
+    requests = LoopRequests()
+    requests.put(lambda: None)
+    requests.clear_wake()
+    assert requests.run_pending() == 1 and not requests.wake.is_set()
+    requests.put(lambda: None)
+    assert requests.wake.is_set()

@@ -3,12 +3,14 @@
 A SimNode without ROS: only what its pacing sleep (``_send_on_time_until``) touches."""
 import threading
 import time
+import types
 
 import pytest
 
 from tutorial_turtlebot.gazebo import sim_node
+from tutorial_turtlebot.gazebo.loop_pacer import WAKE_CHECK, LoopPacer
 from tutorial_turtlebot.gazebo.loop_requests import LoopRequests
-from tutorial_turtlebot.gazebo.impl.nonblocking_publisher import Backlog
+from tutorial_turtlebot.gazebo.send_queue import SendQueue
 from tutorial_turtlebot.sim.world.pacing import MIN_REAL_TIME_FACTOR, Pacer
 
 
@@ -16,6 +18,7 @@ class FakeSim:
     def __init__(self, t=0.0):
         self.time = t
         self.time_ns = int(t * 1e9)
+        self.physics = types.SimpleNamespace(ray_threads=1)
 
 
 def slow_node(step=0.01):
@@ -23,13 +26,13 @@ def slow_node(step=0.01):
     step / MIN_REAL_TIME_FACTOR wall s from now."""
     node = object.__new__(sim_node.SimNode)
     node.sim = FakeSim(0.0)
-    node.pacer = Pacer(MIN_REAL_TIME_FACTOR)
+    node.requests = LoopRequests()
+    node.stop_requested = False
+    node.pacer = LoopPacer(MIN_REAL_TIME_FACTOR, node.requests.wake, node._stopping)
     node.pacer.restart(0.0)
     node.sim.time = step
     node.paused = False
-    node.stop_requested = False
-    node.backlog = Backlog()
-    node.requests = LoopRequests()
+    node.sends = SendQueue()
     return node
 
 
@@ -41,7 +44,7 @@ def request(node, action, delay):
     def call():
         time.sleep(delay)
         start = time.monotonic()
-        node.requests.call(action, 10.0)
+        node.run_in_loop(action, 10.0)
         took.append(time.monotonic() - start)
     thread = threading.Thread(target=call)
     thread.start()
@@ -61,7 +64,7 @@ def test_a_request_is_served_during_a_slow_sleep_which_then_goes_on():
 
 def test_a_pause_during_the_sleep_ends_it():
     node = slow_node(0.01)
-    thread, took = request(node, lambda: setattr(node, "paused", True), 0.1)
+    thread, took = request(node, node.pause, 0.1)
     start = time.monotonic()
     node._send_on_time_until(node.pacer.batch_end(node.sim.time))
     thread.join()
@@ -70,7 +73,7 @@ def test_a_pause_during_the_sleep_ends_it():
 
 def test_a_faster_pace_during_the_sleep_ends_it():
     node = slow_node(0.01)
-    thread, _ = request(node, lambda: node.pacer.set_rtf(1.0, node.sim.time), 0.1)
+    thread, _ = request(node, lambda: node.set_real_time_factor(1.0), 0.1)
     start = time.monotonic()
     node._send_on_time_until(node.pacer.batch_end(node.sim.time))
     thread.join()
@@ -83,7 +86,7 @@ def test_ctrl_c_ends_the_sleep_within_wake_check():
     timer.start()
     start = time.monotonic()
     node._send_on_time_until(node.pacer.batch_end(node.sim.time))
-    assert time.monotonic() - start < 0.1 + sim_node.WAKE_CHECK + 0.05
+    assert time.monotonic() - start < 0.1 + WAKE_CHECK + 0.05
 
 
 def test_kept_messages_leave_on_time_during_the_sleep():
@@ -96,9 +99,7 @@ def test_kept_messages_leave_on_time_during_the_sleep():
         def write_data(self, data):
             sent.append((data, time.monotonic()))
     start = time.monotonic()
-    node.backlog.hold()
-    node.backlog.held.append((Connection(), b"a"))
-    node.backlog.keep_until(start + 0.3)
+    node.sends.keep(lambda _due: node.sends.held.append((Connection(), b"a")), [], start + 0.3)
     node._send_on_time_until(start + 0.5)
     assert sent and sent[0][1] - start == pytest.approx(0.3, abs=0.03)
 
@@ -157,10 +158,8 @@ def clock_node(rtf, pub_clock_frequency):
     """A node whose /clock is recorded; its pace ``rtf`` (0: as fast as possible)."""
     node = object.__new__(sim_node.SimNode)
     node.sim = FakeSim(0.0)
-    node.pacer = Pacer(rtf)
+    node.pacer = LoopPacer(rtf, threading.Event(), lambda: False, pub_clock_frequency)
     node.pacer.restart(0.0)
-    node.clock_gap = 1.0 / pub_clock_frequency if pub_clock_frequency > 0 else 0.0
-    node._next_clock_wall = float("-inf")
     node.clock_packed = sim_node.PackedClock()
     node.clock_pub = ClockPublisher()
     return node

@@ -51,7 +51,7 @@ def node(monkeypatch):
     sim = Simulation(SimConfig(world="empty", spawn_robot=False))
     node = object.__new__(sim_node.SimNode)
     node.sim, node.robot_topics, node._topics, node._output_errors = sim, {}, [], {}
-    node._publisher, node.tf_pub = FakeEndpoint, FakeEndpoint("/tf")
+    node.advertise, node.tf_pub = FakeEndpoint, FakeEndpoint("/tf")
     node.publishers = {"clock": lambda stamp: None}
     node.control = WorldControl(sim)
     yield node
@@ -66,7 +66,7 @@ def spawn(node, name, namespace):
 def test_a_robot_whose_topics_fail_is_taken_out_again_in_one_line(node):
     spawn(node, "tb3_0", "tb3_0")
     node.sync_robots()
-    node._publisher = refusing("/tb3_1/scan")     # after odom and joint_states
+    node.advertise = refusing("/tb3_1/scan")     # after odom and joint_states
     spawn(node, "tb3_1", "tb3_1")
     made_before = len(FakeEndpoint.made)
     with pytest.raises(RequestError) as err:
@@ -82,7 +82,7 @@ def test_a_robot_whose_topics_fail_is_taken_out_again_in_one_line(node):
     assert list(node.robot_topics) == ["tb3_0"] and len(node._topics) == 1
     for _ in range(400):                                 # the loop goes on (was: KeyError)
         node._publish_due(node.sim.step())
-    node._publisher = FakeEndpoint
+    node.advertise = FakeEndpoint
     spawn(node, "tb3_1", "tb3_1")                        # the name and namespace are free again
     node.sync_robots()
     assert sorted(node.robot_topics) == ["tb3_0", "tb3_1"]

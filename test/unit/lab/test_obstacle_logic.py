@@ -6,7 +6,8 @@ import random
 import pytest
 
 from tutorial_turtlebot.lab.obstacle_logic import (
-    FORWARD, TURN_LEFT, TURN_RIGHT, TURN_RADIUS, StopAtObstacle, Wander, turn_radius)
+    FORWARD, TURN_LEFT, TURN_RIGHT, StopAtObstacle, Wander)
+from tutorial_turtlebot.robot_models import MODELS
 
 from unit_helpers import CONVENTIONS, INF, NAN, make_scan
 
@@ -121,22 +122,14 @@ def test_wander_keeps_its_corridor_clear(convention):
     # A post 0.35 m ahead and 0.13 m to the left: at 20 degrees, outside the +-15 degree sector,
     # but in the burger's path (radius 0.15 m).
     post = points_world([(0.35, 0.13)], radius=0.01)
-    logic = Wander(robot_radius=TURN_RADIUS["burger"])
+    logic = Wander(robot_radius=MODELS["burger"].turn_radius)
     assert logic.update(make_scan(convention, post))[0] == 0.0
     # The same post 0.2 m to the left is out of the burger's way ...
     wide = points_world([(0.35, 0.2)], radius=0.01)
-    assert Wander(robot_radius=TURN_RADIUS["burger"]).update(make_scan(convention, wide))[0] > 0
+    assert Wander(robot_radius=MODELS["burger"].turn_radius).update(make_scan(convention, wide))[0] > 0
     # ... but not out of the waffle's.
-    assert Wander(robot_radius=TURN_RADIUS["waffle"]).update(make_scan(convention, wide))[0] == 0
-
-
-def test_turn_radius():
-    assert turn_radius("burger") == pytest.approx(0.15)
-    assert turn_radius("waffle") == turn_radius("waffle_pi") == pytest.approx(0.26)
-    assert turn_radius("hovercraft") == max(TURN_RADIUS.values())
-    # Each is at least the farthest corner of the navigation footprint (doc/turtlebot3.md 1.1).
-    assert turn_radius("burger") >= math.hypot(0.105, 0.105)
-    assert turn_radius("waffle") >= math.hypot(0.205, 0.155)
+    waffle = MODELS["waffle"].turn_radius
+    assert Wander(robot_radius=waffle).update(make_scan(convention, wide))[0] == 0
 
 
 @pytest.mark.parametrize("convention", CONVENTIONS)

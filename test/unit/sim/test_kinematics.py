@@ -5,8 +5,8 @@ import numpy as np
 import pybullet
 import pytest
 
-from tutorial_turtlebot.sim.kinematics import (quat_from_yaw, rotation_matrix, to_body, wrap_angle,
-                                           yaw_from_quat)
+from tutorial_turtlebot.sim.kinematics import (cross_2d, quat_from_yaw, rotation_matrix, to_body,
+                                           wrap_angle, yaw_from_quat)
 
 YAWS = (0.0, 0.3, -0.3, math.pi / 2, -math.pi / 2, 2.5, -2.5, math.pi - 1e-9)
 
@@ -80,3 +80,22 @@ def test_wrap_angle(angle, wrapped):
     """Angles wrap into [-pi, pi)."""
     assert wrap_angle(angle) == pytest.approx(wrapped, abs=1e-12)
     assert -math.pi <= wrap_angle(angle) < math.pi
+
+
+def test_cross_2d_signs_the_turn():
+    """z of (a - o) x (b - o): positive counter-clockwise, negative clockwise, 0 on a line;
+    twice the triangle's area."""
+    assert cross_2d((0.0, 0.0), (2.0, 0.0), (0.0, 3.0)) == 6.0
+    assert cross_2d((1.0, 1.0), (1.0, 4.0), (3.0, 1.0)) == -6.0
+    assert cross_2d((0.0, 0.0), (1.0, 1.0), (2.0, 2.0)) == 0.0
+
+
+def test_cross_2d_element_wise_on_arrays_of_x_then_y():
+    """On (2, N) arrays (transposed (N, 2) points) it is the cross product of each column,
+    bit for bit the same as point by point; a single point broadcasts."""
+    rng = np.random.default_rng(3)
+    o, a, b = (rng.normal(size=(5, 2)) for _ in range(3))
+    columns = cross_2d(o.T, a.T, b.T)
+    assert columns.tolist() == [cross_2d(*p) for p in zip(o.tolist(), a.tolist(), b.tolist())]
+    assert cross_2d(o.T, a.T, b[0]).tolist() == [cross_2d(p, q, b[0].tolist())
+                                                  for p, q in zip(o.tolist(), a.tolist())]

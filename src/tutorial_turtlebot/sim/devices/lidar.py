@@ -7,28 +7,12 @@ hls_lfcd_lds_driver publishes (exact 1 degree steps, 0.0 for no return or too cl
 Angles are in the ``base_scan`` frame, counter-clockwise from +x; distances in metres.
 """
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from ...errors import UserError
-
-
-@dataclass(frozen=True)
-class LaserConfig:
-    """Fields of the published LaserScan and the value used where there is no valid reading."""
-
-    name: str
-    angle_min: float
-    angle_max: float
-    angle_increment: float
-    samples: int = 360
-    range_min: float = 0.12
-    range_max: float = 3.5
-    noise_sigma: float = 0.01     # m, gaussian
-    no_return: float = math.inf   # nothing within range_max
-    too_close: float = -math.inf  # something at or inside range_min
-    rate: float = 5.0             # Hz, sim time
+from ..files.robot_plugins import LaserConfig
 
 
 LASER_MODELS = {

@@ -7,21 +7,20 @@ on a TurtleBot3: on the floor between the wheels, x forward). pybullet places a 
 centre of mass, so every pose here is converted to and from the root link.
 Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
-import copy
 import hashlib
 import os
-import tempfile
 from typing import Dict, List, Optional, Sequence, Tuple
-from xml.etree import ElementTree
 
 import numpy as np
 
 from . import bullet_shapes, gui_window
 from .bullet import pybullet, quiet_output
 from ..kinematics import Pose
-from ..devices.camera import disable_egl, enable_egl, note_textures
+from .rendering import disable_egl, enable_egl
 from ..files.urdf_file import RobotDescription
-from ..files.urdf_meshes import bullet_meshes, textured_urdf, urdf_text
+from ..files.urdf_meshes import bullet_urdf_text
+from .bodies import Body
+from .urdf_loader import load_urdf
 from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP, body_pool, build_world
 from ..files.world_sdf import World
 from ...errors import UserError
@@ -46,28 +45,6 @@ BODY_FRICTION = 0.0              # chassis and caster skids slide freely
 BRAKE_POSITION_GAIN = 0.1
 BRAKE_MOVED = 0.5
 SPAWN_CLEARANCE = 0.001          # m: drop the robot from just above the floor
-
-
-def _urdf_for_bullet(description: RobotDescription) -> str:
-    """A copy of the description's URDF in which bare frames (links with no inertial) weigh
-    next to nothing, and whose meshes are the Wavefront files of ``urdf_meshes.bullet_meshes``.
-    It is made from the tree the description was read from (not parsed again).
-
-    pybullet would give each bare frame 1 kg; merged into the chassis that would triple a
-    Burger's mass. Returns the path of a temporary file the caller deletes.
-    """
-    root = copy.deepcopy(description.root)
-    bullet_meshes(root, os.path.dirname(os.path.abspath(description.path)))
-    for link in root.iter("link"):
-        if link.find("inertial") is None:
-            inertial = ElementTree.SubElement(link, "inertial")
-            ElementTree.SubElement(inertial, "mass", value="1e-6")
-            ElementTree.SubElement(inertial, "inertia", ixx="1e-12", iyy="1e-12", izz="1e-12",
-                                   ixy="0", ixz="0", iyz="0")
-    fd, out = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_")
-    with os.fdopen(fd, "w", encoding="utf-8") as f:   # one element a line (urdf_text)
-        f.write(urdf_text(root))
-    return out
 
 
 class WorldPhysics:
@@ -103,6 +80,15 @@ class WorldPhysics:
     def step(self) -> None:
         """Advance physics by one time step."""
         pybullet.stepSimulation(physicsClientId=self.client)
+
+    def set_parameters(self, time_step: float, gravity, solver: dict) -> None:
+        """The step (s), gravity (m/s^2, world frame) and Bullet's solver parameters
+        (physics_properties.bullet_parameters: pybullet's setPhysicsEngineParameter names)."""
+        cid = self.client
+        pybullet.setTimeStep(time_step, physicsClientId=cid)
+        pybullet.setGravity(*gravity, physicsClientId=cid)
+        pybullet.setPhysicsEngineParameter(physicsClientId=cid, **solver)
+        self.time_step = time_step
 
     def take_robot_bit(self) -> int:
         """A collision group bit for a new robot; UserError when MAX_ROBOTS run already."""
@@ -169,30 +155,15 @@ class RobotBody:
         """Load the description's URDF (kept as text for rebuild), or again that text."""
         cid = self.client
         if description is not None:
-            tmp = _urdf_for_bullet(description)
-            with open(tmp, encoding="utf-8") as f:
-                self._bullet_urdf = f.read()
-            os.unlink(tmp)
+            self._bullet_urdf = bullet_urdf_text(
+                description.root, os.path.dirname(os.path.abspath(description.path)))
         pool = body_pool(self.physics)   # a deleted robot of the same URDF is reused
         parked = pool.take(self._pool_key())
         if parked:
             robot = parked[0]
         else:
-            fd, tmp = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_")
-            with os.fdopen(fd, "w", encoding="utf-8") as f:
-                f.write(self._bullet_urdf)
-            try:
-                with quiet_output():
-                    robot = pybullet.loadURDF(
-                        tmp, flags=(pybullet.URDF_MERGE_FIXED_LINKS
-                                    | pybullet.URDF_USE_INERTIA_FROM_FILE
-                                    | pybullet.URDF_USE_IMPLICIT_CYLINDER),
-                        physicsClientId=cid)
-            finally:
-                os.unlink(tmp)
+            robot = load_urdf(cid, self._bullet_urdf)
             pool.remember([robot])
-            if textured_urdf(self._bullet_urdf):   # its camera images draw textures
-                note_textures(cid)
         for link in range(-1, pybullet.getNumJoints(robot, physicsClientId=cid)):
             pybullet.setCollisionFilterGroupMask(robot, link, self.collision_bit,
                                                  ALL_COLLISION_GROUPS, physicsClientId=cid)
@@ -202,6 +173,11 @@ class RobotBody:
                                     activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
                                     physicsClientId=cid)
         return robot
+
+    @property
+    def body(self) -> Body:
+        """The robot's pybullet body (a new one after ``rebuild``)."""
+        return Body(self.client, self.robot)
 
     def _pool_key(self) -> tuple:
         """The BodyPool key of this robot's body: the digest of the URDF pybullet loaded."""

@@ -12,6 +12,10 @@ Mesh visuals are drawn part by part, each in its SDF ``<material>`` colour, or w
 has none, in the mesh file's own colour of that part, and with its texture where it has one
 (mesh_file.write_obj_parts; a texture that cannot be used leaves the part in its colour, else
 grey). A visual with an SDF ``<material>`` is drawn in that colour alone, textures left out.
+A box or plane whose ``<material>`` script has a texture image (world_sdf ``Shape.texture``,
+material_scripts) is drawn with it, tinted by its colour, the same way (``_box_visual_file``):
+the whole image once across its top face, upright seen from above with +x to the right and +y
+up (u along +x, v along +y, as Gazebo maps a plane); a box shows it on each side face too.
 
 Units: metres; poses in the world frame (z up), as in world_sdf.
 """
@@ -26,9 +30,10 @@ import numpy as np
 from . import bullet_shapes
 from ..files import mesh_cache
 from .bullet import pybullet
-from ..devices.camera import MAX_TEXTURE_PIXELS, note_textures, texture_budget, texture_budget_refused
+from .rendering import (MAX_TEXTURE_PIXELS, note_textures, texture_budget,
+                        texture_budget_refused)
 from ...errors import WorldError
-from ..kinematics import pose_from_xyz_rpy, quat_from_matrix
+from ..kinematics import cross_2d, pose_from_xyz_rpy, quat_from_matrix
 from ..files.mesh_file import Mesh, MeshPart, load_mesh, texture_pixels, write_obj_parts
 from ..files.world_sdf import Inertial, Link, Shape, World
 
@@ -191,7 +196,11 @@ def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: 
                 add(pybullet.GEOM_MESH, pose, _part_colour(s, rgba), mesh=path)
         elif s.kind == "box":
             half = [v / 2 for v in s.size]
-            if visual:   # a file: EGL flattens thin GEOM_BOX visuals
+            if visual and s.texture is not None:
+                path, rgba = _box_visual_file(s, half[0], half[1], -half[2], half[2], cid,
+                                              mesh_dir)
+                add(pybullet.GEOM_MESH, pose, rgba, mesh=path)
+            elif visual:   # a file: EGL flattens thin GEOM_BOX visuals
                 hx, hy = half[0], half[1]
                 add(pybullet.GEOM_MESH, pose, s.rgba, mesh=_obj_file(
                     [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)], -half[2], half[2], mesh_dir))
@@ -206,9 +215,11 @@ def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: 
 
 def _visual_files(shape: Shape, mesh: Mesh, cid: int, mesh_dir: str):
     """write_obj_parts of a visual mesh: with its textures where the file's own colours are
-    drawn (no SDF <material>) and the client's texture budget (camera.texture_budget) allows;
-    tells the camera when the client gets a texture."""
-    textured = shape.mesh_colours and any(p.texture is not None for p in mesh.parts)
+    drawn (no SDF <material>), or where it is a box or plane of a script's texture
+    (``_box_mesh``), and the client's texture budget (rendering.texture_budget) allows; tells the
+    camera when the client gets a texture."""
+    own = shape.mesh_colours or shape.kind in ("box", "plane")
+    textured = own and any(p.texture is not None for p in mesh.parts)
     if textured:
         pixels = sum(texture_pixels(p.texture) for p in mesh.parts if p.texture is not None)
         first = not texture_budget_refused(cid)
@@ -299,6 +310,10 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
         col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_BOX, **col_args)
                if collide else -1)
         hx, hy = half[0], half[1]
+        if shape.texture is not None:
+            path, rgba = _box_visual_file(shape, hx, hy, *z_range, cid, mesh_dir)
+            return [(col, pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
+                                                     rgbaColor=rgba, physicsClientId=cid))]
         rectangle = [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)]
         return [(col, _mesh_visual(rectangle, *z_range, rgba, cid, mesh_dir))]
     kind = {"cylinder": pybullet.GEOM_CYLINDER, "sphere": pybullet.GEOM_SPHERE}[shape.kind]
@@ -391,14 +406,44 @@ def _obj_file(polygon: Sequence[Point], z0: float, z1: float, mesh_dir: str) -> 
     return path
 
 
-def _cross(o: Point, a: Point, b: Point) -> float:
-    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+def _box_mesh(shape: Shape, hx: float, hy: float, z0: float, z1: float) -> Mesh:
+    """A box or plane visual of a script's texture as a Mesh of one textured part (tinted by
+    ``shape.rgba``): x in -hx..hx, y in -hy..hy, z in z0..z1 (m, the shape's frame). Its top
+    and bottom faces map the image by x and y (u = 0..1 along +x, v = 0..1 along +y: upright
+    seen from above with +x to the right); a box's side faces each show the whole image upright
+    (v along +z) seen from outside, a plane's sides the image's edge beside them."""
+    corners = [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)]          # counter-clockwise
+    vertices = np.array([(x, y, z) for z in (z0, z1) for x, y in corners], dtype=np.float64)
+
+    def above(i):
+        x, y = corners[i % 4]
+        return ((x + hx) / (2 * hx), (y + hy) / (2 * hy))
+
+    faces = [(4, 5, 6), (4, 6, 7), (0, 2, 1), (0, 3, 2)]           # top, bottom
+    for i in range(4):
+        j = (i + 1) % 4
+        faces += [(i, j, 4 + j), (i, 4 + j, 4 + i)]                 # a side, from outside
+    uvs = [[above(v) for v in face] for face in faces[:4]]
+    upright = (((0.0, 0.0), (1.0, 0.0), (1.0, 1.0)), ((0.0, 0.0), (1.0, 1.0), (0.0, 1.0)))
+    for k, face in enumerate(faces[4:]):
+        uvs.append(upright[k % 2] if shape.kind == "box" else [above(v) for v in face])
+    part = MeshPart(np.array(faces, dtype=np.int64), tuple(shape.rgba),
+                    np.array(uvs, dtype=np.float64), shape.texture)
+    return Mesh(shape.kind, vertices, (part,))
+
+
+def _box_visual_file(shape: Shape, hx: float, hy: float, z0: float, z1: float, cid: int,
+                     mesh_dir: str) -> Tuple[str, Tuple[float, float, float, float]]:
+    """(Wavefront file, colour to draw it in) of ``_box_mesh``: textured as ``_visual_files``
+    allows, else in ``shape.rgba``."""
+    [(path, rgba)] = _visual_files(shape, _box_mesh(shape, hx, hy, z0, z1), cid, mesh_dir)
+    return path, tuple(rgba) if rgba is not None else shape.rgba
 
 
 def _is_convex(polygon: Sequence[Point]) -> bool:
     """Whether a counter-clockwise polygon turns left at every corner."""
     n = len(polygon)
-    return all(_cross(polygon[i - 1], polygon[i], polygon[(i + 1) % n]) > 0 for i in range(n))
+    return all(cross_2d(polygon[i - 1], polygon[i], polygon[(i + 1) % n]) > 0 for i in range(n))
 
 
 def _triangulate(shape: Shape) -> List[Tuple[Point, Point, Point]]:
@@ -410,10 +455,10 @@ def _triangulate(shape: Shape) -> List[Tuple[Point, Point, Point]]:
         n = len(remaining)
         for i in range(n):
             a, b, c = remaining[i - 1], remaining[i], remaining[(i + 1) % n]
-            if _cross(a, b, c) <= 0:
+            if cross_2d(a, b, c) <= 0:
                 continue                                  # a reflex corner is no ear
             others = (p for p in remaining if p not in (a, b, c))
-            if any(_cross(a, b, p) >= 0 and _cross(b, c, p) >= 0 and _cross(c, a, p) >= 0
+            if any(cross_2d(a, b, p) >= 0 and cross_2d(b, c, p) >= 0 and cross_2d(c, a, p) >= 0
                    for p in others):
                 continue                                  # another corner lies inside
             triangles.append((a, b, c))

@@ -58,6 +58,7 @@ import numpy as np
 from ...errors import UserError
 from . import limits
 from . import file_read, mesh_cache
+from ..kinematics import cross_2d
 from .file_read import MAX_MESH_FILE_BYTES, MAX_MESH_SIDE_FILE_BYTES, not_regular
 
 Rgba = Tuple[float, float, float, float]
@@ -704,14 +705,10 @@ def _hull_2d(points: np.ndarray) -> List[int]:
     dropped), counter-clockwise."""
     order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
 
-    def cross(o, a, b):
-        return ((points[a][0] - points[o][0]) * (points[b][1] - points[o][1])
-                - (points[a][1] - points[o][1]) * (points[b][0] - points[o][0]))
-
     def chain(indices):
         out: List[int] = []
         for i in indices:
-            while len(out) >= 2 and cross(out[-2], out[-1], i) <= 0:
+            while len(out) >= 2 and cross_2d(points[out[-2]], points[out[-1]], points[i]) <= 0:
                 out.pop()
             out.append(i)
         return out

@@ -26,7 +26,6 @@ from typing import Collection, Dict, List, Mapping, NamedTuple, Optional, Tuple
 from ...errors import UrdfError
 from . import limits
 from ..kinematics import ZERO_XYZ_RPY, XyzRpy
-from ..devices.lidar import LaserConfig
 from .xml_reader import Element, XmlReader
 
 DIFF_DRIVE = "libgazebo_ros_diff_drive.so"
@@ -35,6 +34,23 @@ GPU_LASER = "libgazebo_ros_gpu_laser.so"
 IMU = "libgazebo_ros_imu.so"
 CAMERA = "libgazebo_ros_camera.so"
 OPENNI_KINECT = "libgazebo_ros_openni_kinect.so"
+
+
+@dataclass(frozen=True)
+class LaserConfig:
+    """Fields of the published LaserScan and the value used where there is no valid reading."""
+
+    name: str
+    angle_min: float
+    angle_max: float
+    angle_increment: float
+    samples: int = 360
+    range_min: float = 0.12
+    range_max: float = 3.5
+    noise_sigma: float = 0.01     # m, gaussian
+    no_return: float = math.inf   # nothing within range_max
+    too_close: float = -math.inf  # something at or inside range_min
+    rate: float = 5.0             # Hz, sim time
 
 
 @dataclass(frozen=True)

@@ -120,7 +120,7 @@ def visual_parts(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0), textures: 
 
 def textured_urdf(urdf: str) -> bool:
     """Whether the URDF text ``urdf`` (of bullet_urdf_text) names a textured file of
-    visual_parts: its client's camera must then draw textures (camera.note_textures)."""
+    visual_parts: its client's camera must then draw textures (rendering.note_textures)."""
     return any(path in urdf for path in _textured)
 
 
@@ -240,12 +240,27 @@ def urdf_text(robot: ElementTree.Element) -> str:
     return ElementTree.tostring(robot, encoding="unicode")
 
 
+# What a link without <inertial> weighs in the URDF pybullet loads (kg; kg m^2 about each axis).
+BARE_LINK_MASS = 1e-6
+BARE_LINK_INERTIA = 1e-12
+
+
 def bullet_urdf_text(robot: ElementTree.Element, base_dir: str) -> str:
-    """The URDF text of a copy of the parsed ``<robot>`` with its meshes rewritten by
-    ``bullet_meshes``, one element a line (``urdf_text``)."""
+    """The URDF text pybullet loads (engine/urdf_loader) of a copy of the parsed ``<robot>``:
+    its meshes rewritten by ``bullet_meshes`` (relative to ``base_dir``), each link without an
+    ``<inertial>`` (a bare frame: base_footprint, base_scan, ...) given next to no mass, one
+    element a line (``urdf_text``). Gazebo drops a bare frame's link or merges it with no
+    mass; pybullet would give it 1 kg, which merged into a Burger's chassis would triple it."""
     robot = copy.deepcopy(robot)
     if next(robot.iter("mesh"), None) is not None:
         bullet_meshes(robot, base_dir)
+    for link in robot.iter("link"):
+        if link.find("inertial") is None:
+            inertial = ElementTree.SubElement(link, "inertial")
+            ElementTree.SubElement(inertial, "mass", value=repr(BARE_LINK_MASS))
+            ElementTree.SubElement(inertial, "inertia", ixx=repr(BARE_LINK_INERTIA),
+                                   iyy=repr(BARE_LINK_INERTIA), izz=repr(BARE_LINK_INERTIA),
+                                   ixy="0", ixz="0", iyz="0")
     return urdf_text(robot)
 
 

@@ -1,21 +1,23 @@
-"""The lights of a world file as plain data (get_light_properties / set_light_properties).
+"""The lights of a world as plain data (get_light_properties / set_light_properties).
 
 No ROS and no pybullet: the lights light nothing here (the camera renders with its own fixed
-lighting), they are kept so that what a client sets is what it reads back. Read from the
-world's ``<light>`` elements and from ``<include>``s of a light model (``model://sun``, found as
-world_sdf finds models), with SDF's defaults for what a light leaves out.
-Colours (r, g, b, a) in 0..1; directions and positions in m, world frame.
+lighting), they are kept so that what a client sets is what it reads back. The world loader
+(world_sdf) reads them once, with the rest of the world, into ``World.lights``: the world's
+``<light>`` elements and those of its ``<include>``s of a light model (``model://sun``), each
+made a ``Light`` by ``light_of`` with SDF's defaults for what it leaves out. A value that cannot
+be read keeps SDF's default and is one line in ``World.warnings``. ``lights_by_name`` gives the
+world API its own copies. Colours (r, g, b, a) in 0..1; directions and positions in m, world
+frame.
 """
-import os
-from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Tuple
+from dataclasses import dataclass, field, replace
+from typing import Callable, Dict, Iterable, Optional, Tuple
 
-from ...errors import UserError
 from . import xml_reader
 from ..kinematics import IDENTITY, Pose, Vector3, pose_from_xyz_rpy
 from .xml_reader import Element
 
 Rgba = Tuple[float, float, float, float]
+Warn = Callable[[Element, str], None]     # notes one line about an element (world_sdf's warn)
 
 
 @dataclass
@@ -35,79 +37,57 @@ class Light:
     pose: Pose = field(default=IDENTITY)
 
 
-def _numbers(elem: Optional[Element], count: int, default):
-    """``count`` numbers of ``elem``'s text; ``default`` if it has not exactly those (a light
-    that cannot be read keeps SDF's defaults)."""
-    values = xml_reader.numbers(elem.value, count, finite=False) if elem is not None else None
-    return default if values is None else values
+def _numbers(elem: Optional[Element], count: int, default, warn: Warn):
+    """``count`` numbers of ``elem``'s text; ``default`` if there is no ``elem``, and, with a
+    warning, if it has not exactly those (a light value that cannot be read keeps SDF's
+    default)."""
+    if elem is None:
+        return default
+    values = xml_reader.numbers(elem.value, count, finite=False)
+    if values is None:
+        warn(elem, "light: <%s> must be %s, got %r: SDF's default is used"
+             % (elem.tag, "a number" if count == 1 else "%d numbers" % count, elem.value))
+        return default
+    return values
 
 
-def _pose(elem: Optional[Element], default: Pose) -> Pose:
-    values = _numbers(elem, 6, None)
+def light_pose(elem: Optional[Element], warn: Warn, default: Pose = IDENTITY) -> Pose:
+    """The pose "x y z roll pitch yaw" of ``elem`` (a light's or an include's ``<pose>``);
+    ``default`` if there is none or, with a warning, if it cannot be read."""
+    values = _numbers(elem, 6, None, warn)
     return default if values is None else pose_from_xyz_rpy(values)
 
 
-def light_of(elem: Element, name: Optional[str] = None,
-             pose: Optional[Element] = None) -> Light:
-    """The Light of a ``<light>`` element (``name``/``pose``: an include's overrides)."""
+def light_of(elem: Element, warn: Warn, name: Optional[str] = None,
+             pose: Optional[Pose] = None) -> Light:
+    """The Light of a ``<light>`` element (``name``/``pose``: an include's overrides); each
+    value that cannot be read keeps SDF's default, with one line to ``warn``."""
     light = Light(name or elem.get("name", ""), elem.get("type", "point"))
     shadows = elem.find("cast_shadows")
     if shadows is not None and shadows.text:
-        light.cast_shadows = shadows.text.strip().lower() in ("1", "true")
-    light.diffuse = _numbers(elem.find("diffuse"), 4, light.diffuse)
-    light.specular = _numbers(elem.find("specular"), 4, light.specular)
+        try:
+            light.cast_shadows = xml_reader.boolean(shadows.text)
+        except ValueError:
+            warn(shadows, "light: <cast_shadows> must be true or false, got %r: SDF's default "
+                          "is used" % shadows.text.strip())
+    light.diffuse = _numbers(elem.find("diffuse"), 4, light.diffuse, warn)
+    light.specular = _numbers(elem.find("specular"), 4, light.specular, warn)
     attenuation = elem.find("attenuation")
     if attenuation is not None:
         for key in ("range", "constant", "linear", "quadratic"):
-            value = _numbers(attenuation.find(key), 1, None)
+            value = _numbers(attenuation.find(key), 1, None, warn)
             if value is not None:
                 setattr(light, "attenuation_" + key, value[0])
-    light.direction = _numbers(elem.find("direction"), 3, light.direction)
-    light.pose = _pose(pose if pose is not None else elem.find("pose"), light.pose)
+    light.direction = _numbers(elem.find("direction"), 3, light.direction, warn)
+    light.pose = pose if pose is not None else light_pose(elem.find("pose"), warn)
     return light
 
 
-def _included_lights(include: Element, base_dir: str) -> List[Light]:
-    """The lights of an ``<include>`` of a light model; [] for anything else or unreadable."""
-    uri = (include.findtext("uri") or "").strip()
-    if not uri:
-        return []
-    try:
-        from .asset_uri import model_sdf_file, resolve_uri
-        from .world_sdf import parse_xml
-        found = resolve_uri(uri, base_dir)
-        sdf = model_sdf_file(found, parse_xml) if os.path.isdir(found) else found
-        root = xml_reader.parse_file(sdf, "light model")
-    except Exception:  # noqa: BLE001 - a light that cannot be read is not there
-        return []
-    if root.find(".//model") is not None:
-        return []
-    lights = root.findall(".//light")
-    name = (include.findtext("name") or "").strip() or None
-    return [light_of(elem, name if len(lights) == 1 else None, include.find("pose"))
-            for elem in lights]
-
-
-def read_lights(path: str) -> Dict[str, Light]:
-    """The lights of the world file at ``path`` by name, in file order; {} if there are none or
-    the file cannot be read."""
-    try:
-        root = xml_reader.parse_file(path, "world file")
-    except UserError:
-        return {}
-    world = root if root.tag == "world" else root.find("world")
-    if world is None:
-        return {}
-    base_dir = os.path.dirname(os.path.abspath(path))
-    lights: Dict[str, Light] = {}
-    for elem in world:
-        if elem.tag == "light":
-            found = [light_of(elem)]
-        elif elem.tag == "include":
-            found = _included_lights(elem, base_dir)
-        else:
-            continue
-        for light in found:
-            if light.name and light.name not in lights:
-                lights[light.name] = light
-    return lights
+def lights_by_name(lights: Iterable[Light]) -> Dict[str, Light]:
+    """``lights`` (a World's) by name, in file order, each a copy of its own: the first of a
+    name wins, a light without a name is left out."""
+    out: Dict[str, Light] = {}
+    for light in lights:
+        if light.name and light.name not in out:
+            out[light.name] = replace(light)
+    return out

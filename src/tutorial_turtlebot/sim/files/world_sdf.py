@@ -6,22 +6,29 @@ No ROS and no pybullet here: a world becomes plain data (``World``, ``Shape``) t
 The subset: a ``<world>`` (or bare ``<model>`` elements) holding static or dynamic models, nested
 models and links, whose collisions and visuals have a ``box``, ``cylinder``, ``sphere``, ``plane``,
 one extruded ``polyline`` or a ``mesh`` (Collada, STL, OBJ: ``mesh_file``) geometry; ``<pose>`` as
-"x y z roll pitch yaw" (``degrees="true"`` allowed); visual ``<material>`` colours; ``<include>``
-of a model folder found as Gazebo finds it (``asset_uri``: ``model://`` through GAZEBO_MODEL_PATH
-and the package's own ``models/``, which has Gazebo's ``ground_plane`` and ``sun``), with its
-``<name>``, ``<pose>`` and ``<static>`` overrides, nested to any depth up to MAX_INCLUDE_DEPTH;
-what an include or a mesh names is read only from a regular file (``file_read``). A
-model's links keep their ``<inertial>`` (SDF's defaults where absent: 1 kg, inertia 1 kg m^2
+"x y z roll pitch yaw" (``degrees="true"`` allowed); visual ``<material>`` colours, and the
+colour and texture image of a ``<script>`` material of a model's own ``.material`` files
+(material_scripts); ``<include>`` of a model folder found as Gazebo finds it (``asset_uri``:
+``model://`` through GAZEBO_MODEL_PATH and the package's own ``models/``, which has Gazebo's
+``ground_plane`` and ``sun``), with its ``<name>``, ``<pose>`` and ``<static>`` overrides,
+nested to any depth up to MAX_INCLUDE_DEPTH; what an include or a mesh names is read only
+from a regular file (``file_read``). A model's links keep their ``<inertial>`` (SDF's defaults where absent: 1 kg, inertia 1 kg m^2
 about each axis) and each collision its ``<surface><friction><ode><mu>`` (default 1), so that a
-model that is not ``<static>`` can be a movable rigid body. Elements that do not shape the world
-(physics, scene, light, gui, plugin, sensor, joint ...) are skipped. Anything else that would
-carry geometry (a heightmap, a mesh's ``<submesh>``, an actor) is an error, never a silent gap.
+model that is not ``<static>`` can be a movable rigid body. The world's ``<light>``s and those of
+its ``<include>``s of a light model (``model://sun``) are kept in ``World.lights``
+(``world_lights.Light``: they light nothing, the world API reads and sets them). Other
+elements that do not shape the world (physics, scene, gui, plugin, sensor, joint ...) are
+skipped. Anything else that would carry geometry (a heightmap, a mesh's ``<submesh>``, an
+actor) is an error, never a silent gap.
 
 Tolerated as Gazebo tolerates them, each with one line in ``World.warnings`` (file, line, what
 was left out; the node logs them): an ``<include>`` whose model is found nowhere (the model is
 left out), a ``<mesh>`` whose file is found nowhere or is a Collada file that cannot be read
-(the link loads without that collision or visual). A static model's ``<inertial>`` numbers are
-not checked (Gazebo never uses them; its building editor writes mass 0 and inertia nan).
+(the link loads without that collision or visual), a material script that cannot be read or
+is malformed, or whose texture cannot be used (the visual is drawn in its colour, else grey), a
+light's value that cannot be read (it keeps SDF's default). A static model's ``<inertial>``
+numbers are not checked (Gazebo never uses them; its building editor writes mass 0 and
+inertia nan).
 
 Units: metres, radians. Poses are in the world frame (z up), kept as SDF writes them
 (kinematics.XyzRpy: x, y, z, then SDF's fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch)
@@ -38,7 +45,9 @@ from . import limits
 from . import xml_reader
 from .asset_uri import AssetError, AssetNotFound, model_sdf_file, resolve_uri
 from .file_read import not_regular
-from ..kinematics import ZERO_XYZ_RPY, XyzRpy, compose_xyz_rpy, rpy_from_matrix
+from .material_scripts import MaterialScripts
+from .world_lights import Light, light_of, light_pose
+from ..kinematics import ZERO_XYZ_RPY, XyzRpy, compose_xyz_rpy, cross_2d, rpy_from_matrix
 from ...package_data import data_dir
 from .xml_reader import Element, XmlReader
 
@@ -148,6 +157,9 @@ class Shape:
     mu: float = 1.0          # a collision's friction coefficient (<surface><friction><ode><mu>)
     mesh: str = ""           # a mesh's file, absolute (read by mesh_file.load_mesh with ``size``)
     mesh_colours: bool = False  # a mesh visual without <material>: the file's own colours
+    texture: Optional[str] = None  # absolute path of the PNG or JPEG image of its <material>'s
+    #                               script (material_scripts; a collision: its twin's); drawn on
+    #                               a box or plane, the whole image once across its top face
 
 
 @dataclass(frozen=True)
@@ -191,6 +203,7 @@ class World:
     shapes: Tuple[Shape, ...]
     model_specs: Tuple[Model, ...] = ()   # the same models with their links, in file order
     warnings: Tuple[str, ...] = ()        # one line each: what was left out, and why
+    lights: Tuple[Light, ...] = ()        # the world's lights in file order (world_lights)
 
     def model(self, name: str) -> Model:
         """The top-level model called ``name``; KeyError if there is none."""
@@ -306,13 +319,9 @@ def _normal_pose(n: Sequence[float]) -> XyzRpy:
 
 # --- polygon checks for polylines ---------------------------------------------------------------
 
-def _cross(o, a, b) -> float:
-    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-
 def _segments_cross(p1, p2, q1, q2) -> bool:
-    d1, d2 = _cross(q1, q2, p1), _cross(q1, q2, p2)
-    d3, d4 = _cross(p1, p2, q1), _cross(p1, p2, q2)
+    d1, d2 = cross_2d(q1, q2, p1), cross_2d(q1, q2, p2)
+    d3, d4 = cross_2d(p1, p2, q1), cross_2d(p1, p2, q2)
     return d1 * d2 < 0 and d3 * d4 < 0
 
 
@@ -325,7 +334,7 @@ def _clean_polygon(points: List[Tuple[float, float]]) -> Optional[Tuple[Tuple[fl
         changed = False
         for i in range(len(pts)):
             a, b, c = pts[i - 1], pts[i], pts[(i + 1) % len(pts)]
-            if abs(_cross(a, b, c)) < 1e-12:
+            if abs(cross_2d(a, b, c)) < 1e-12:
                 del pts[i]
                 changed = True
                 break
@@ -337,7 +346,7 @@ def _clean_polygon(points: List[Tuple[float, float]]) -> Optional[Tuple[Tuple[fl
         for j in range(i + 2, n):
             if (j + 1) % n != i and _segments_cross(*edges[i], *edges[j]):
                 return None
-    area = sum(_cross((0.0, 0.0), pts[i - 1], pts[i]) for i in range(n))
+    area = sum(cross_2d((0.0, 0.0), pts[i - 1], pts[i]) for i in range(n))
     return tuple(pts if area > 0 else pts[::-1])
 
 
@@ -358,6 +367,8 @@ class _Loader(XmlReader):
         self._joints: List[Tuple[str, str]] = []    # (name, type)
         self.warnings: List[str] = []               # shared with the loaders of includes
         self.budget = {"shapes": MAX_WORLD_SHAPES, "includes": MAX_INCLUDES}   # shared too
+        self.material_scripts = MaterialScripts()   # each script file read once; shared too
+        self.lights: List[Light] = []               # the world's, in file order
 
     def warn(self, node: Element, message: str) -> None:
         """Note ``message`` about ``node`` ("file:line: message"), once."""
@@ -421,10 +432,12 @@ class _Loader(XmlReader):
                 models.append(self.top_model(node, parent))
             elif node.tag == "include":
                 models.extend(self.include(node, parent, ""))
+            elif node.tag == "light" and world.tag == "world":
+                self.lights.append(light_of(node, self.warn))
             elif node.tag in _UNSUPPORTED_WORLD:
                 self.fail_bare(node, "<%s> is not supported: build it from models" % node.tag)
         return World(name, self.path, tuple(m.name for m in models), tuple(self.shapes),
-                     tuple(models), tuple(self.warnings))
+                     tuple(models), tuple(self.warnings), tuple(self.lights))
 
     def top_model(self, node: Element, parent: XyzRpy) -> Model:
         self._links: List[Link] = []
@@ -439,7 +452,8 @@ class _Loader(XmlReader):
         """The model an <include> adds, read from the folder or file its <uri> names, with the
         include's <name>, <pose> and <static> in place of the model's own. At the top level it
         is a Model of the world; inside a model (``scope``) its links join that model. An SDF
-        of lights only (model://sun) adds nothing."""
+        of lights only (model://sun) adds no model; at the top level its lights join the
+        world's."""
         uri_node = node.child("uri")
         uri = uri_node.value if uri_node is not None else ""
         if not uri:
@@ -469,6 +483,8 @@ class _Loader(XmlReader):
         models = root.all("model")
         if len(models) != 1:
             if not models and root.all("light"):
+                if not scope:
+                    self.light_model(node, sdf, root)
                 return []
             self.fail_bare(node, "<include> of %s: %s must hold one <model>, it holds %d"
                            % (uri, sdf, len(models)))
@@ -485,11 +501,25 @@ class _Loader(XmlReader):
         model = xml_reader.element("model", attrib, model.line, children)
         inner = _Loader(sdf, depth=self.depth + 1)
         inner.shapes, inner.warnings, inner.budget = self.shapes, self.warnings, self.budget
+        inner.material_scripts = self.material_scripts
         if not scope:
             return [inner.top_model(model, parent)]
         inner._links, inner._joints = self._links, self._joints
         inner.model(model, parent, scope, parent_static)
         return []
+
+    def light_model(self, include: Element, sdf: str, root: Element) -> None:
+        """Keep the lights of the light model ``root`` (read from ``sdf``) that ``include``
+        adds to the world, with the include's <name> (a model of one light) and <pose> in
+        place of their own."""
+        lights = root.all("light")
+        name_node = include.child("name")
+        name = name_node.value if name_node is not None and len(lights) == 1 else None
+        override = include.child("pose")
+        pose = light_pose(override, self.warn) if override is not None else None
+        inner = _Loader(sdf, depth=self.depth + 1)   # its warnings name the light's file
+        inner.warnings = self.warnings
+        self.lights.extend(light_of(elem, inner.warn, name, pose) for elem in lights)
 
     def model(self, node: Element, parent: XyzRpy, scope: str, parent_static: bool) -> str:
         name = self.name(node)
@@ -626,13 +656,14 @@ class _Loader(XmlReader):
             self.fail_bare(geo, "unsupported geometry <%s> in %s (supported: %s)"
                            % (geo.tag, name, ", ".join(KINDS)))
         collision = node.tag == "collision"
-        rgba = DEFAULT_RGBA if collision else self.colour(node.child("material"))
+        rgba, texture = (DEFAULT_RGBA, None) if collision else self.look(node.child("material"))
         mu = self.friction(node) if collision else 1.0
         mesh_colours = geo.tag == "mesh" and not collision and node.child("material") is None
         if mesh_colours:
             self.texture_warnings(geo, mesh, size)
         return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu,
-                     mesh=mesh if geo.tag == "mesh" else "", mesh_colours=mesh_colours)
+                     mesh=mesh if geo.tag == "mesh" else "", mesh_colours=mesh_colours,
+                     texture=texture)
 
     def mesh(self, geo: Element, name: str) -> Optional[Tuple[Tuple[float, ...], str]]:
         """(scale, absolute file) of a <mesh>, its file read once here so that a bad one is
@@ -685,9 +716,16 @@ class _Loader(XmlReader):
         return cleaned
 
     def colour(self, material: Optional[Element]) -> Rgba:
-        """Explicit <diffuse>, else <ambient>, else a known Gazebo script name, else grey."""
+        """Explicit <diffuse>, else <ambient>, else a known Gazebo script name, else the
+        colour of the script's own material (material_scripts), else grey."""
+        return self.look(material)[0]
+
+    def look(self, material: Optional[Element]) -> Tuple[Rgba, Optional[str]]:
+        """(colour, texture image or None) of a visual's <material>: ``colour``'s, and the
+        image of a script's own material where it has one. A bad script is a warning (its
+        file and line), never an error: the visual is drawn grey."""
         if material is None:
-            return DEFAULT_RGBA
+            return DEFAULT_RGBA, None
         for tag in ("diffuse", "ambient"):
             node = material.child(tag)
             if node is not None:
@@ -695,12 +733,32 @@ class _Loader(XmlReader):
                 rgba = self.floats(node, 4 if len(values) == 4 else 3)
                 if not all(0.0 <= v <= 1.0 for v in rgba):
                     self.fail_bare(node, "<%s> values must lie in 0..1, got %r" % (tag, node.value))
-                return tuple(rgba) + (1.0,) * (4 - len(rgba))
+                return tuple(rgba) + (1.0,) * (4 - len(rgba)), None
         script = material.child("script")
         script_name = script.child("name") if script is not None else None
-        if script_name is not None:
-            return GAZEBO_MATERIALS.get(script_name.value, DEFAULT_RGBA)
-        return DEFAULT_RGBA
+        if script_name is None:
+            return DEFAULT_RGBA, None
+        if script_name.value in GAZEBO_MATERIALS:
+            return GAZEBO_MATERIALS[script_name.value], None
+        return self.script_look(script, script_name)
+
+    def script_look(self, script: Element, name: Element) -> Tuple[Rgba, Optional[str]]:
+        """(colour, texture or None) of a material the <script>'s own <uri> folders define;
+        (grey, None) where none does. A <uri> found nowhere is passed over, as Gazebo does
+        (its error line is not a warning here); each problem of the scripts is one warning."""
+        places = []
+        for uri in script.all("uri"):
+            try:
+                places.append(resolve_uri(uri.value, self.base_dir))
+            except AssetError:
+                continue
+        found, problems = self.material_scripts.material(name.value, places)
+        for problem in problems:
+            if not any(w.endswith(problem) for w in self.warnings):   # once per world
+                self.warn(name, problem)
+        if found is None:
+            return DEFAULT_RGBA, None
+        return found.rgba or DEFAULT_RGBA, found.texture
 
     def pair_twins(self, shapes: List[Shape]) -> List[Shape]:
         """Link each collision to the visual with the same geometry and pose, and colour it:
@@ -722,7 +780,8 @@ class _Loader(XmlReader):
                 source = by_name.get(twin) if twin else (visuals[0] if visuals else None)
                 rgba = source.rgba if source else DEFAULT_RGBA
                 own = bool(source and source.mesh_colours and source.mesh == s.mesh)
-                s = replace(s, rgba=rgba, twin=twin, mesh_colours=own)
+                texture = source.texture if twin else None     # the same face to draw it on
+                s = replace(s, rgba=rgba, twin=twin, mesh_colours=own, texture=texture)
             elif twin:
                 s = replace(s, twin=twin)
             out.append(s)

@@ -3,7 +3,8 @@
 The simulator owns the clock: it steps physics as fast as it can and, with a real-time factor
 ``rtf`` > 0, sleeps once sim time runs ``MIN_SLEEP`` ahead of ``rtf`` x wall time, until wall
 time has caught up (``batch_end``). ``wall_of`` says when (wall) a sim time is due, so the loop
-sends what it made ahead at its moment (``sleep_until``) while physics itself runs in batches.
+sends what it made ahead at its moment while physics itself runs in batches. The sleeping is
+the loop's (gazebo/loop_pacer.py: a request cuts it short).
 ``rtf`` 0 means never sleep. Times in seconds (float) from ``time.monotonic``.
 
 A factor between 0 and ``MIN_REAL_TIME_FACTOR`` is refused: at 1e-9 one physics step would be
@@ -39,17 +40,14 @@ class Pacer:
     # far more than a step (caches are cold again), so physics runs 20 ms of wall time's worth
     # of steps at once: at real time that halves its CPU against sleeping after every step.
     MIN_SLEEP = 0.02
-    # sleep_until does not sleep for less than this (s): the sleep's own overshoot is larger.
-    SHORTEST_SLEEP = 0.0002
     # Never try to catch up more than this much wall time (s) after a stall.
     MAX_LAG = 0.25
 
     def __init__(self, rtf: float, clock: Callable[[], float] = time.monotonic,
-                 sleep: Callable[[float], None] = time.sleep, min_sleep: float = MIN_SLEEP):
+                 min_sleep: float = MIN_SLEEP):
         check_rtf(rtf)
         self.rtf = rtf
         self._clock = clock
-        self._sleep = sleep
         self._min_sleep = min_sleep
         self.restart(0.0)
 
@@ -79,13 +77,6 @@ class Pacer:
             self._anchor_wall, self._anchor_sim = self._clock(), sim_time
             return 0.0
         return ahead
-
-    def sleep_until(self, wall_time: float) -> None:
-        """Sleep until the clock reads ``wall_time`` (not at all when that is under
-        SHORTEST_SLEEP away)."""
-        delay = wall_time - self._clock()
-        if delay >= self.SHORTEST_SLEEP:
-            self._sleep(delay)
 
     def batch_end(self, sim_time: float) -> Optional[float]:
         """The wall time to sleep until once ``sim_time`` runs ``min_sleep`` or more ahead of

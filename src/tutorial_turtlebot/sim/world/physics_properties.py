@@ -3,7 +3,7 @@
 ``time_step`` is the physics step (s); ``max_update_rate`` the steps per wall second Gazebo aims
 for (0 = as fast as possible), so the real-time factor is ``time_step * max_update_rate``.
 The ODE solver fields are kept and reported as set; those with a Bullet counterpart are applied
-(``BULLET_FIELDS``): sor_pgs_iters -> numSolverIterations, erp -> erp and contactERP,
+(``bullet_parameters``): sor_pgs_iters -> numSolverIterations, erp -> erp and contactERP,
 cfm -> globalCFM. The others (ODE-only) change nothing here.
 """
 import math
@@ -13,7 +13,6 @@ from typing import Tuple
 from ..files import limits
 
 MIN_TIME_STEP, MAX_TIME_STEP = 0.0001, 0.01       # s, as SimConfig allows
-BULLET_FIELDS = ("sor_pgs_iters", "erp", "cfm")
 # Each ODE field's physical range (low, high, unit); a value outside is refused, never passed on
 # (pybullet takes the solver's iterations as a C int: 4294967295 would not even convert).
 ODE_RANGES = {

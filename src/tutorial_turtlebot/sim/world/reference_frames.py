@@ -16,7 +16,7 @@ from typing import Sequence, Tuple
 
 # the world API's pose type and conversions are kinematics' own
 from ..kinematics import (IDENTITY, IDENTITY_QUAT, Pose, Quat, quat_from_rpy,  # noqa: F401
-                         rpy_from_quat)
+                         rpy_from_quat, to_body)
 from ..kinematics import Vector3 as Vec
 
 Twist = Tuple[Vec, Vec]
@@ -32,17 +32,6 @@ def is_world_frame(name: str) -> bool:
 def finite(*values: Sequence[float]) -> bool:
     """Whether every number in the given sequences is finite (no NaN, no inf)."""
     return all(math.isfinite(v) for seq in values for v in seq)
-
-
-def normalized(q: Sequence[float]) -> Quat:
-    """``q`` scaled to unit length; the all-zero quaternion becomes the identity, as in Gazebo.
-    ValueError for NaN or infinite parts."""
-    if not finite(q):
-        raise ValueError("quaternion %r is not finite" % (tuple(q),))
-    norm = math.sqrt(sum(v * v for v in q))
-    if norm == 0.0:
-        return IDENTITY_QUAT
-    return tuple(v / norm for v in q)
 
 
 def multiply(a: Quat, b: Quat) -> Quat:
@@ -61,14 +50,9 @@ def conjugate(q: Quat) -> Quat:
 
 
 def rotate(q: Quat, v: Sequence[float]) -> Vec:
-    """Vector ``v`` rotated by the unit quaternion ``q``."""
-    x, y, z, w = q
-    vx, vy, vz = v
-    # v + 2 w (u x v) + 2 u x (u x v), u = (x, y, z)
-    cx, cy, cz = y * vz - z * vy, z * vx - x * vz, x * vy - y * vx
-    return (vx + 2 * (w * cx + y * cz - z * cy),
-            vy + 2 * (w * cy + z * cx - x * cz),
-            vz + 2 * (w * cz + x * cy - y * cx))
+    """Vector ``v`` rotated by the unit quaternion ``q``: R(q) v, which is R(q*)^T v, the body
+    frame of the inverse rotation (kinematics.to_body of the conjugate)."""
+    return to_body(conjugate(q), v)
 
 
 def compose(a: Pose, b: Pose) -> Pose:

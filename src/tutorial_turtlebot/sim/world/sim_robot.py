@@ -14,10 +14,11 @@ import numpy as np
 
 from .. import kinematics
 from ..files import limits
-from ..devices.camera import CameraRenderer, validate_spec
+from ..devices.camera import CameraIntrinsics
+from ..engine.rendering import CameraRenderer, validate_spec
 from ..devices.diff_drive import SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController, sanitize_command
-from ..devices.lidar import LASER_MODELS, LaserConfig, as_real_driver, ranges_from_distances, \
-    ray_directions
+from ..devices.lidar import (LaserConfig, as_real_driver, laser_config, ranges_from_distances,
+                             ray_directions)
 from ..kinematics import Pose
 from ..engine.physics import GRAVITY, RobotBody, WorldPhysics
 from ..files.robot_plugins import CameraSensor, LaserSensor, RobotPlugins
@@ -65,9 +66,8 @@ class RobotOptions:
 
     def validate(self) -> None:
         """UserError (one line) for a value that cannot be simulated."""
-        if self.lidar_model is not None and self.lidar_model not in LASER_MODELS:
-            raise UserError("unknown lidar_model %r: valid are %s"
-                            % (self.lidar_model, ", ".join(LASER_MODELS)))
+        if self.lidar_model is not None:
+            laser_config(self.lidar_model)   # UserError naming the valid ones
         if self.odom_source is not None and self.odom_source not in ODOM_SOURCES:
             raise UserError("unknown odom_source %r: valid are %s"
                             % (self.odom_source, ", ".join(ODOM_SOURCES)))
@@ -135,8 +135,10 @@ class SimRobot:
         self.laser: Optional[LaserConfig] = self._laser_config(plugins.laser)
         self.camera_sensor: Optional[CameraSensor] = plugins.camera if options.camera else None
         self.camera_spec = self.camera_sensor.spec if self.camera_sensor else None
+        self.camera_intrinsics: Optional[CameraIntrinsics] = None   # CameraInfo's numbers
         if self.camera_spec is not None:
             validate_spec(self.camera_spec)
+            self.camera_intrinsics = CameraIntrinsics.from_spec(self.camera_spec)
         drive = self.drive_plugin
         self.odom_source = (options.odom_source or drive.odometry_source) if drive else "world"
         self.body = RobotBody(physics, description, spawn_pose,

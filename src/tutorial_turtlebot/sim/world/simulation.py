@@ -21,9 +21,9 @@ from .schedule import RateSchedule, seconds_to_ns, NS_PER_S
 from .sim_robot import ImuState, OdomState, RobotOptions, SimRobot, normalize_namespace
 from .spawn_check import check_spawn, footprint_radius, resting_height
 from ..files.urdf_file import RobotDescription, read_urdf, urdf_path
-from .world_models import ModelRegistry, RequestError, model_of_urdf_body, models_of_world, \
-    robot_model_name
-from ..engine.bullet import pybullet
+from .world_models import (ENTITY_EXISTS, ModelRegistry, RequestError, RobotModel,
+                           models_of_world, robot_model_name, spawn_failure, spawn_refusal,
+                           urdf_model)
 from ..engine import gui_window
 from ..files.world_sdf import load_world, resolve_world
 
@@ -117,15 +117,15 @@ class Simulation:
                         or (description.plugins.camera is not None and options.camera))
         self.physics = WorldPhysics(self.world, config.time_step, config.solver_iterations,
                                     config.gui, egl=wants_camera)
-        self.models = ModelRegistry()
-        for model in models_of_world(self.world, self.physics.world_bodies, self.physics.client):
-            self.models.add(model)
         self.physics_properties = PhysicsProperties.for_factor(
             config.time_step, 1.0, OdeConfig(sor_pgs_iters=config.solver_iterations),
             (0.0, 0.0, -GRAVITY))
         # the world API's wrenches, joint efforts and weightless links (world_control)
         self.forces = AppliedForces(self.physics.client, lambda: self.physics_properties.gravity)
-        self.models.on_rebuild = self.forces.forget_model   # a rebuilt model's bodies are new
+        # a rebuilt model's bodies are new: what the world API applied to the old ones goes
+        self.models = ModelRegistry(on_rebuild=self.forces.forget_model)
+        for model in models_of_world(self.world, self.physics.world_bodies, self.physics.client):
+            self.models.add(model)
         self.step_ns = seconds_to_ns(config.time_step)
         self.time_ns = 0
         self.schedules: Dict[str, RateSchedule] = {"clock": RateSchedule(config.clock_rate)}
@@ -165,52 +165,39 @@ class Simulation:
         (Gazebo's status text) when the name or namespace is taken or illegal, or the robot
         cannot be built; nothing changes then."""
         if name in self.models:
-            raise RequestError("SpawnModel: Failure - entity already exists.")
-        try:
+            raise RequestError(ENTITY_EXISTS)
+        with spawn_refusal():
             namespace = normalize_namespace(namespace)
-        except UserError as err:
-            raise RequestError("SpawnModel: Failure - %s" % err) from None
         for other in self._robot_list:
             if other.namespace == namespace:
-                raise RequestError("SpawnModel: Failure - robot %r already uses namespace %r; "
-                                   "give this one its own robot_namespace"
-                                   % (other.name, namespace or "/"))
+                raise spawn_failure("robot %r already uses namespace %r; give this one its own "
+                                    "robot_namespace" % (other.name, namespace or "/"))
         if options is None:
             options = self.config.robot_options(description.name)
-        try:
+        with spawn_refusal():
             robot = SimRobot(self.physics, name, namespace, description, pose, options,
                              self.time_ns, seed=self.config.seed + len(self.robots))
-        except UserError as err:
-            raise RequestError("SpawnModel: Failure - %s" % err) from None
-        body = robot.body
-        collisions = description.collision_names()   # get_model_properties' geom_names
         try:
-            model = model_of_urdf_body(name, body.robot, self.physics.client, "robot",
-                                       reset_hook=body.reset_robot,
-                                       remove_hook=lambda: self._forget_robot(name),
-                                       collisions=collisions)
+            model = urdf_model(RobotModel, name, robot.body.body,
+                               collisions=description.collision_names(), robot_body=robot.body)
         except BaseException:   # nothing of it stays in the world
-            body.remove()
+            robot.body.remove()
             raise
-
-        def rebuild():   # a body whose state went NaN: the robot's URDF loaded again
-            body.rebuild()
-            return model_of_urdf_body(name, body.robot, self.physics.client, "robot",
-                                      spawn_pose=model.spawn_pose, collisions=collisions)
-        model.rebuild_hook = rebuild
         self.models.add(model)
         self.robots[name] = robot
         self._robot_list.append(robot)
         self._next_output_ns = self.time_ns
         return robot
 
-    def _forget_robot(self, name: str) -> None:
-        """The robot's part of ``self.models.remove(name)`` (delete_model)."""
-        robot = self.robots.pop(name)
-        self._robot_list.remove(robot)
-        robot.body.remove()
-        if robot is self.robot:
-            self.robot = None
+    def remove_model(self, name: str) -> None:
+        """Take model ``name`` out of the world (delete_model), and its robot, if it is one,
+        out of the stepping; KeyError if there is none."""
+        self.models.remove(name)
+        robot = self.robots.pop(name, None)
+        if robot is not None:
+            self._robot_list.remove(robot)
+            if robot is self.robot:
+                self.robot = None
 
     # --- time and stepping ---------------------------------------------------------------------
 
@@ -261,11 +248,7 @@ class Simulation:
     def set_physics_properties(self, props: PhysicsProperties) -> None:
         """Apply a validated PhysicsProperties: the step, gravity and Bullet's counterparts of
         the ODE fields; the real-time factor is the caller's pacer's."""
-        cid = self.physics.client
-        pybullet.setTimeStep(props.time_step, physicsClientId=cid)
-        pybullet.setGravity(*props.gravity, physicsClientId=cid)
-        pybullet.setPhysicsEngineParameter(physicsClientId=cid, **bullet_parameters(props.ode))
-        self.physics.time_step = props.time_step
+        self.physics.set_parameters(props.time_step, props.gravity, bullet_parameters(props.ode))
         self.config.time_step = props.time_step
         self.step_ns = seconds_to_ns(props.time_step)
         self.physics_properties = props
@@ -273,43 +256,3 @@ class Simulation:
     def close(self) -> None:
         """Release the physics client."""
         self.physics.close()
-
-    # --- the robot of SimConfig (sim.launch's one robot) -----------------------------------------
-
-    def command(self, linear: float, angular: float) -> List[str]:
-        """SimRobot.command of ``self.robot``."""
-        return self.robot.command(linear, angular)
-
-    def odom(self) -> OdomState:
-        return self.robot.odom()
-
-    def ground_truth(self):
-        return self.robot.ground_truth()
-
-    def joint_states(self):
-        return self.robot.joint_states()
-
-    def scan(self):
-        return self.robot.scan()
-
-    def imu(self) -> ImuState:
-        return self.robot.imu()
-
-    def camera_image(self, depth: bool = False):
-        return self.robot.camera_image(depth)
-
-    @property
-    def laser(self):
-        return self.robot.laser
-
-    @property
-    def camera(self):
-        return self.robot.camera
-
-    @property
-    def camera_spec(self):
-        return self.robot.camera_spec
-
-    @property
-    def description(self) -> RobotDescription:
-        return self.robot.description

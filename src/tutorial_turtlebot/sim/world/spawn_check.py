@@ -18,7 +18,7 @@ from typing import Iterable, Optional, Sequence, Tuple
 import numpy as np
 
 from ...errors import WorldError
-from ..kinematics import matrix_from_rpy
+from ..kinematics import cross_2d, matrix_from_rpy
 from ..files.mesh_file import load_mesh
 from ..files.world_sdf import Shape, World
 
@@ -202,17 +202,12 @@ def _plan_triangle_distances(tri: np.ndarray, p: np.ndarray) -> np.ndarray:
         t = np.clip(np.einsum("ij,ij->i", p - u, edge) / np.where(length2 > 0, length2, 1.0),
                     0.0, 1.0)
         best = np.minimum(best, np.linalg.norm(u + edge * t[:, None] - p, axis=1))
-    cross = [_cross_2d(v - u, p - u) for u, v in ((a, b), (b, c), (c, a))]
-    area = _cross_2d(b - a, c - a)
+    cross = [cross_2d(u.T, v.T, p) for u, v in ((a, b), (b, c), (c, a))]
+    area = cross_2d(a.T, b.T, c.T)
     inside = (np.abs(area) > 1e-12) & (
         ((cross[0] >= 0) & (cross[1] >= 0) & (cross[2] >= 0))
         | ((cross[0] <= 0) & (cross[1] <= 0) & (cross[2] <= 0)))
     return np.where(inside, 0.0, best)
-
-
-def _cross_2d(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """z of the cross product of rows of plane vectors."""
-    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
 
 
 def _crossings(tri: np.ndarray, origin: np.ndarray) -> int:

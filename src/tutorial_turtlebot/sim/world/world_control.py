@@ -16,23 +16,23 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ...errors import UserError
-from ..engine.bullet import pybullet, quiet_output
+from ..engine import urdf_loader
+from ..engine.bodies import Body, Joint
 from ..engine.applied_forces import EffortJob, WrenchJob
 from ..engine.bullet_shapes import ShapeBudgetError
-from ..devices.camera import note_textures
 from ..kinematics import rotation_matrix
-from ..files.urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths, textured_urdf, urdf_text
+from ..files.urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths, urdf_text
 from ..files import limits
 from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
 from .reference_frames import Pose, Twist
-from ..files.spawn_request import SpawnRequest, placed, prepare_spawn
-from ..engine.world_bullet import (MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK, body_pool,
-                           build_world, place_world_bodies, reused_world_bodies)
-from ..files.world_lights import Light, read_lights
-from .world_models import (LinkPart, ModelRegistry, RequestError, WorldModel, check_model_name,
-                           model_of_urdf_body, models_of_world)
+from .spawn_request import SpawnRequest, placed, prepare_spawn
+from ..engine.world_bullet import (body_pool, build_world, place_world_bodies,
+                                   reused_world_bodies)
+from ..files.world_lights import Light, lights_by_name
+from .world_models import (ENTITY_EXISTS, SPAWN_FAILURE, LinkPart, ModelRegistry, RequestError,
+                           UrdfModel, WorldModel, check_model_name, models_of_world,
+                           spawn_failure, spawn_refusal, urdf_model)
 
 
 @dataclass
@@ -67,8 +67,7 @@ class JointProperties:
     rate: List[float]
 
 
-JOINT_KINDS = {pybullet.JOINT_REVOLUTE: "revolute", pybullet.JOINT_PRISMATIC: "prismatic",
-               pybullet.JOINT_SPHERICAL: "ball"}
+JOINT_KINDS = ("revolute", "prismatic", "ball")   # what get_joint_properties names (else revolute)
 COM_TOLERANCE = 1e-6          # m: a set com.position this close to the present one is unchanged
 # rad/s (or m/s): a joint given an effort may turn this fast. pybullet's default of 100 clamps a
 # light wheel's velocity inside a step that a large effort and its motor fight over, and the
@@ -122,7 +121,7 @@ class WorldControl:
     def __init__(self, sim):
         self.sim = sim
         self._get_counts = {}
-        self._lights: Optional[Dict[str, Light]] = None   # read from the world file when asked
+        self._lights: Optional[Dict[str, Light]] = None   # copied from the loaded world
         # spawned model -> (its text, its bodies): delete parks them for the next spawn of that
         # text (world_bullet.BodyPool: pybullet frees little of a removed body)
         self._spawned: Dict[str, Tuple[tuple, List[int]]] = {}
@@ -242,31 +241,30 @@ class WorldControl:
                    robot_namespace: str = "") -> Pose:
         """Step 1, in the loop (quick): the checks of a spawn's names, and the world pose of
         ``pose`` in ``reference``. RequestError (Gazebo's status text) if it cannot be."""
-        _check_names("SpawnModel: Failure - ", model_name=name, reference_frame=reference,
+        _check_names(SPAWN_FAILURE, model_name=name, reference_frame=reference,
                      robot_namespace=robot_namespace)
         check_model_name(name)
         if name in self.models:
-            raise RequestError("SpawnModel: Failure - entity already exists.")
+            raise RequestError(ENTITY_EXISTS)
         if not rf.is_world_frame(reference):
             try:
                 frame = self.models.frame(reference)[0]
             except KeyError:
-                raise RequestError("SpawnModel: Failure - reference reference_frame %r not "
-                                   "found, or it is not a model or a scoped link"
-                                   % reference) from None
+                raise spawn_failure("reference reference_frame %r not found, or it is not a "
+                                    "model or a scoped link" % reference) from None
         else:
             frame = None
         try:
             return placed(pose, frame)
         except ValueError as err:
-            raise RequestError("SpawnModel: Failure - %s" % err) from None
+            raise spawn_failure(str(err)) from None
 
     def spawn_prepared(self, request: SpawnRequest, pose: Pose, robot_namespace: str = "") -> None:
         """Step 3, in the loop: build what ``spawn_request.prepare_spawn`` read and checked
         (step 2, anywhere) at world ``pose``: bounded work, the pybullet calls only."""
         name = request.name
         if name in self.models:       # taken since step 1
-            raise RequestError("SpawnModel: Failure - entity already exists.")
+            raise RequestError(ENTITY_EXISTS)
         cid = self.sim.physics.client
         if request.robot is not None:
             self._add_robot(request, pose, robot_namespace)
@@ -282,13 +280,13 @@ class WorldControl:
                 try:
                     bodies = build_world(request.world, cid)
                 except ShapeBudgetError as err:
-                    raise RequestError("SpawnModel: Failure - %s" % err) from None
+                    raise spawn_failure(str(err)) from None
                 pool.remember(list(bodies.values()))
-            model = models_of_world(request.world, bodies, cid, source="spawned")[0]
+            model = models_of_world(request.world, bodies, cid)[0]
             built = list(dict.fromkeys(bodies.values()))
         else:
             model = self._load_urdf(request, pose)
-            key, built = self._urdf_key(request), [model.parts[0].body]
+            key, built = self._urdf_key(request), [model.parts[0].body.uid]
         self.models.add(model)
         self._spawned[name] = (key, built)
 
@@ -316,64 +314,35 @@ class WorldControl:
         cid = self.sim.physics.client
         name = request.name
         collisions = request.description.collision_names()
-        try:   # meshes as the Wavefront files pybullet loads (urdf_meshes; prepared: cached)
+        with spawn_refusal():   # meshes as pybullet loads them (urdf_meshes; prepared: cached)
             urdf = bullet_urdf_text(request.plain_urdf(), os.getcwd())
-        except UserError as err:
-            raise RequestError("SpawnModel: Failure - %s" % err) from None
         pool = body_pool(self.sim.physics)
         reused = pool.take(self._urdf_key(request))
-        body = reused[0] if reused else self._new_urdf_body(urdf, cid)
-        if not reused:
-            pool.remember([body])
-        for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
-            pybullet.setCollisionFilterGroupMask(body, link, MOVABLE_COLLISION_GROUP,
-                                                 MOVABLE_COLLISION_MASK, physicsClientId=cid)
-            pybullet.changeDynamics(body, link, lateralFriction=1.0,
-                                    linearDamping=0.0, angularDamping=0.0,  # none in Gazebo
-                                    activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
-                                    physicsClientId=cid)
-            if link >= 0:   # a joint turns freely, as Gazebo's (pybullet's default motor brakes)
-                pybullet.setJointMotorControl2(body, link, pybullet.VELOCITY_CONTROL, force=0.0,
-                                               physicsClientId=cid)
-        model = model_of_urdf_body(name, body, cid, "spawned", spawn_pose=pose,
-                                   collisions=collisions)
-        model.rebuild_hook = lambda: self._load_urdf(request, pose)   # state went NaN
+        if reused:
+            urdf_loader.setup_movable(cid, reused[0])
+            body = Body(cid, reused[0])
+        else:
+            with spawn_refusal():
+                body = urdf_loader.load_movable(cid, urdf)
+            pool.remember([body.uid])
+        model = urdf_model(UrdfModel, name, body, spawn_pose=pose, collisions=collisions,
+                           urdf=urdf)
         model.set_state(pose, rf.ZERO_TWIST)
         return model
-
-    @staticmethod
-    def _new_urdf_body(urdf: str, cid: int) -> int:
-        """A new pybullet body of URDF text ``urdf`` (as bullet_urdf_text writes it)."""
-        if textured_urdf(urdf):   # the cameras of this client draw textures from now on
-            note_textures(cid)
-        fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_spawn_")
-        try:
-            with os.fdopen(fd, "w") as f:
-                f.write(urdf)
-            try:
-                with quiet_output():
-                    return pybullet.loadURDF(path, flags=pybullet.URDF_MERGE_FIXED_LINKS
-                                             | pybullet.URDF_USE_INERTIA_FROM_FILE,
-                                             physicsClientId=cid)
-            except pybullet.error as err:
-                raise RequestError("SpawnModel: Failure - pybullet could not load the URDF: %s"
-                                   % err) from None
-        finally:
-            os.unlink(path)
 
     def delete(self, name: str) -> None:
         _check_names("DeleteModel: ", model_name=name)
         model = self._model(name, "DeleteModel")  # refuses an unknown name
         self.sim.forces.forget_model(name)   # its wrenches and efforts go with it
         key, built = self._spawned.pop(name, (None, []))
-        bodies = list(dict.fromkeys(p.body for p in model.parts))
+        bodies = list(dict.fromkeys(p.body.uid for p in model.parts))
         pool = body_pool(self.sim.physics)
         # its bodies wait for the next spawn of the same text, unless they were rebuilt since
         if key is not None and bodies == built and pool.park(key, bodies):
             model.parts = []
         elif key is not None:   # (a robot's body is its RobotBody's to park)
             pool.forget(bodies + built)
-        self.models.remove(name)
+        self.sim.remove_model(name)
 
     # --- physics -----------------------------------------------------------------------------
 
@@ -403,12 +372,9 @@ class WorldControl:
         except KeyError:
             return None
 
-    def _link_com(self, link: LinkPart) -> np.ndarray:
-        cid = self.sim.physics.client
-        if link.index < 0:
-            return np.array(pybullet.getBasePositionAndOrientation(link.body,
-                                                                   physicsClientId=cid)[0])
-        return np.array(pybullet.getLinkState(link.body, link.index, physicsClientId=cid)[0])
+    @staticmethod
+    def _link_com(link: LinkPart) -> np.ndarray:
+        return np.array(link.body.link_com(link.index))
 
     def _start_end(self, start_ns: int, duration_ns: int) -> Tuple[int, Optional[int]]:
         """A job's (start, end) in sim ns: a start of 0 or in the past is now; a negative
@@ -461,32 +427,30 @@ class WorldControl:
             torque_w = (np.array(rf.rotate(frame_pose[1], t))
                         + np.cross(acts_at - self._link_com(link), force_w))
         start, end = self._start_end(start_ns, duration_ns)
-        self.sim.forces.add_wrench(WrenchJob(model.name, body, link.body, link.index,
+        self.sim.forces.add_wrench(WrenchJob(model.name, body, link.body.uid, link.index,
                                              tuple(force_w), tuple(torque_w), start, end))
 
     def clear_body_wrenches(self, body: str) -> int:
         """Stop every wrench on ``body``; how many there were (an unknown name: 0)."""
         return self.sim.forces.clear_wrenches(body)
 
-    def _joint(self, name: str, what: str) -> Tuple[WorldModel, int, int, tuple]:
-        """(model, pybullet body, joint index, getJointInfo) of the movable joint ``name``
-        (the first model in world order that has one of that name, or "model::joint")."""
+    def _joint(self, name: str, what: str) -> Tuple[WorldModel, Body, Joint]:
+        """(model, body, joint) of the movable joint ``name`` (the first model in world order
+        that has one of that name, or "model::joint")."""
         model_name, sep, joint_name = name.rpartition("::")
         if sep and model_name in self.models:
             candidates = [self.models.get(model_name)]
         else:
             candidates, joint_name = self.models.models(), name
-        cid = self.sim.physics.client
         for model in candidates:
             if joint_name not in model.joints:
                 continue
             for part in model.parts:
                 if not part.movable:
                     continue
-                for j in range(pybullet.getNumJoints(part.body, physicsClientId=cid)):
-                    info = pybullet.getJointInfo(part.body, j, physicsClientId=cid)
-                    if info[1].decode() == joint_name and info[2] != pybullet.JOINT_FIXED:
-                        return model, part.body, j, info
+                for joint in part.body.joints():
+                    if joint.name == joint_name and joint.movable:
+                        return model, part.body, joint
         raise RequestError("%s: joint not found" % what)
 
     def _listed_joint(self, name: str) -> Optional[str]:
@@ -514,11 +478,10 @@ class WorldControl:
         if problem:
             raise RequestError("ApplyJointEffort: %s" % problem)
         _check_times("ApplyJointEffort", start_ns, duration_ns)
-        model, body, index, info = self._joint(joint, "ApplyJointEffort")
-        pybullet.changeDynamics(body, index, maxJointVelocity=EFFORT_JOINT_MAX_VELOCITY,
-                                physicsClientId=self.sim.physics.client)
+        model, body, found = self._joint(joint, "ApplyJointEffort")
+        body.limit_joint_rate(found.index, EFFORT_JOINT_MAX_VELOCITY)
         start, end = self._start_end(start_ns, duration_ns)
-        self.sim.forces.add_effort(EffortJob(model.name, info[1].decode(), body, index,
+        self.sim.forces.add_effort(EffortJob(model.name, found.name, body.uid, found.index,
                                              float(effort), start, end))
 
     def clear_joint_forces(self, joint: str) -> int:
@@ -527,17 +490,14 @@ class WorldControl:
 
     # --- link and joint properties ---------------------------------------------------------------
 
-    def _inertial(self, link: LinkPart):
+    @staticmethod
+    def _inertial(link: LinkPart):
         """(mass, com position in the link frame, rotation of pybullet's inertia axes in the
         link frame as a 3x3, principal moments) of a movable link."""
-        cid = self.sim.physics.client
-        info = pybullet.getDynamicsInfo(link.body, link.index, physicsClientId=cid)
-        if link.index < 0:   # the body's base frame is its inertial frame
-            com = rf.inverse(link.in_body)
-        else:
-            com = (tuple(info[3]), tuple(info[4]))
+        inertial = link.body.inertial(link.index)
+        com = rf.inverse(link.in_body) if link.index < 0 else inertial.com
         rotation = rotation_matrix(com[1])
-        return info[0], tuple(com[0]), rotation, np.array(info[2], dtype=float)
+        return inertial.mass, tuple(com[0]), rotation, np.array(inertial.moments, dtype=float)
 
     def get_link_properties(self, scoped: str) -> LinkProperties:
         _check_names("GetLinkProperties: ", link_name=scoped)
@@ -551,7 +511,8 @@ class WorldControl:
         mass, com, rotation, moments = self._inertial(link)
         t = rotation @ np.diag(moments) @ rotation.T
         return LinkProperties(tuple(float(v) for v in com),
-                              self.sim.forces.has_gravity(link.body, link.index), float(mass),
+                              self.sim.forces.has_gravity(link.body.uid, link.index),
+                              float(mass),
                               tuple(float(v) for v in (t[0, 0], t[0, 1], t[0, 2], t[1, 1],
                                                        t[1, 2], t[2, 2])))
 
@@ -594,11 +555,8 @@ class WorldControl:
         if off > 1e-6 * max(abs(np.diag(local))):
             raise RequestError("SetLinkProperties: products of inertia off the link's inertia "
                                "axes are not supported here (the axes cannot turn)")
-        cid = self.sim.physics.client
-        pybullet.changeDynamics(link.body, link.index, mass=float(mass),
-                                localInertiaDiagonal=tuple(float(v) for v in np.diag(local)),
-                                physicsClientId=cid)
-        self.sim.forces.set_gravity(model.name, link.body, link.index, bool(gravity_mode),
+        link.body.set_inertial(link.index, float(mass), tuple(np.diag(local)))
+        self.sim.forces.set_gravity(model.name, link.body.uid, link.index, bool(gravity_mode),
                                     float(mass))
 
     def get_joint_properties(self, joint: str) -> JointProperties:
@@ -607,16 +565,15 @@ class WorldControl:
         <joint type>, at 0 and still."""
         _check_names("GetJointProperties: ", joint_name=joint)
         try:
-            _, body, index, info = self._joint(joint, "GetJointProperties")
+            _, body, found = self._joint(joint, "GetJointProperties")
         except RequestError:
             kind = self._listed_joint(joint)
             if kind is None:
                 raise
             return JointProperties(kind, [0.0], [0.0], [0.0])
-        position, rate = pybullet.getJointState(body, index,
-                                                physicsClientId=self.sim.physics.client)[:2]
-        return JointProperties(JOINT_KINDS.get(info[2], "revolute"), [float(info[6])],
-                               [float(position)], [float(rate)])
+        position, rate = body.joint_state(found.index)
+        kind = found.kind if found.kind in JOINT_KINDS else "revolute"
+        return JointProperties(kind, [found.damping], [float(position)], [float(rate)])
 
     def set_model_configuration(self, name: str, joints: Sequence[str],
                                 positions: Sequence[float]) -> str:
@@ -638,22 +595,20 @@ class WorldControl:
                                for i, v in enumerate(positions))
         if problem:
             raise RequestError("SetModelConfiguration: %s" % problem)
-        cid = self.sim.physics.client
-        movable: Dict[str, Tuple[int, int]] = {}
+        movable: Dict[str, Tuple[Body, int]] = {}
         for part in model.parts:
             if part.movable:
-                for j in range(pybullet.getNumJoints(part.body, physicsClientId=cid)):
-                    info = pybullet.getJointInfo(part.body, j, physicsClientId=cid)
-                    if info[2] != pybullet.JOINT_FIXED:
-                        movable.setdefault(info[1].decode(), (part.body, j))
+                for joint in part.body.joints():
+                    if joint.movable:
+                        movable.setdefault(joint.name, (part.body, joint.index))
         wanted = dict(zip(joints, positions))   # the last of a repeated name wins, as Gazebo's
         robot = self.sim.robots.get(name)
         idle = robot is not None and robot.body.wheels and max(
             abs(v) for v in robot.body.wheel_states()[1]) < IDLE_WHEEL_RATE
         for joint, position in wanted.items():
             if joint in movable:
-                pybullet.resetJointState(*movable[joint], float(position), 0.0,
-                                         physicsClientId=cid)
+                body, index = movable[joint]
+                body.set_joint(index, float(position), 0.0)
         if idle and any(movable[j][1] in robot.body.wheels for j in wanted if j in movable):
             # an idle robot's wheels are held where they stopped: hold them where they are now
             robot.body.set_wheel_velocities(0.0, 0.0)
@@ -666,9 +621,9 @@ class WorldControl:
     # --- lights ----------------------------------------------------------------------------------
 
     def lights(self) -> Dict[str, Light]:
-        """The world's lights by name (read from the world file the first time)."""
+        """The world's lights by name (copies of the loaded world's, made the first time)."""
         if self._lights is None:
-            self._lights = read_lights(self.sim.world.path)
+            self._lights = lights_by_name(self.sim.world.lights)
         return self._lights
 
     def get_light(self, name: str) -> Light:

@@ -8,21 +8,40 @@ can say where it is, be teleported with a twist, be put back where it was spawne
 Poses are ((x, y, z), (qx, qy, qz, qw)) in the world frame; twists ((vx, vy, vz), (wx, wy, wz))
 in m/s and rad/s, world frame (reference_frames).
 """
-import math
+from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from ..engine.bullet import pybullet
+from ...errors import UserError
+from ..engine import urdf_loader
+from ..engine.bodies import Body
+from ..engine.world_bullet import build_world, link_com_pose
 from . import reference_frames as rf
 from ..kinematics import pose_from_xyz_rpy
 from .reference_frames import Pose, Twist
 from ..files.world_sdf import World
 
-SOURCES = ("world", "robot", "spawned")
-
 
 class RequestError(Exception):
     """A world request Gazebo would refuse: ``str(err)`` is its status message, one line."""
+
+
+SPAWN_FAILURE = "SpawnModel: Failure - "   # how Gazebo's spawn services begin a refusal
+ENTITY_EXISTS = SPAWN_FAILURE + "entity already exists."
+
+
+def spawn_failure(problem: str) -> RequestError:
+    """The RequestError of a spawn refused for ``problem`` (one line)."""
+    return RequestError(SPAWN_FAILURE + problem)
+
+
+@contextmanager
+def spawn_refusal():
+    """Turn a UserError raised inside into the spawn's refusal: a RequestError of its line."""
+    try:
+        yield
+    except UserError as err:
+        raise spawn_failure(str(err)) from None
 
 
 def robot_model_name(world: str, model: str) -> str:
@@ -39,18 +58,16 @@ def robot_model_name(world: str, model: str) -> str:
 def check_model_name(name: str) -> None:
     """RequestError unless ``name`` can name a new model (non-empty, no "::", no spaces)."""
     if not name or name != name.strip() or any(c.isspace() for c in name):
-        raise RequestError("SpawnModel: Failure - model name %r must be non-empty and have no "
-                           "white space" % name)
+        raise spawn_failure("model name %r must be non-empty and have no white space" % name)
     if "::" in name:
-        raise RequestError("SpawnModel: Failure - model name %r must not contain '::' (that "
-                           "scopes links)" % name)
+        raise spawn_failure("model name %r must not contain '::' (that scopes links)" % name)
 
 
 @dataclass
 class BodyPart:
-    """A pybullet body of a model: its base frame's pose in the model frame."""
+    """A body of a model: its base frame's pose in the model frame."""
 
-    body: int
+    body: Body
     in_model: Pose
     movable: bool
 
@@ -62,7 +79,7 @@ class LinkPart:
     (``body`` None, at ``in_model``)."""
 
     name: str
-    body: Optional[int] = None
+    body: Optional[Body] = None
     index: int = -1
     in_body: Pose = rf.IDENTITY
     in_model: Pose = rf.IDENTITY
@@ -70,25 +87,19 @@ class LinkPart:
 
 @dataclass
 class WorldModel:
-    """One model of the world, with what the world API asks of it."""
+    """One model of the world, with what the world API asks of it. Its kind (SdfModel,
+    UrdfModel, RobotModel) knows how its bodies are reset, removed and built again."""
 
     name: str
     static: bool
-    source: str                      # one of SOURCES
     parts: List[BodyPart]
     links: List[LinkPart]
     spawn_pose: Pose                 # where reset_world / reset_simulation put it
-    client: int
     joints: List[str] = field(default_factory=list)
     # the kinds of joints that are listed but not simulated (an SDF model's), by name
     joint_types: Dict[str, str] = field(default_factory=dict)
     geoms: List[str] = field(default_factory=list)
-    reset_hook: Optional[Callable[[], None]] = None   # the robot's own reset
-    remove_hook: Optional[Callable[[], None]] = None  # the robot's own removal
-    # Fresh bodies for a model whose physics state went NaN (rebuild): a new WorldModel of the
-    # same spec whose parts and links replace these (a robot's hook reloads its own body).
-    rebuild_hook: Optional[Callable[[], "WorldModel"]] = None
-    on_rebuild: Optional[Callable[[str], None]] = None  # told the name after a rebuild
+    on_rebuild: Optional[Callable[[str], None]] = None  # told the name (ModelRegistry.add)
     _pose: Pose = rf.IDENTITY        # the model frame of a model without a movable body
 
     def __post_init__(self):
@@ -104,16 +115,12 @@ class WorldModel:
         part = self._movable()
         if part is None:
             return self._pose
-        base = pybullet.getBasePositionAndOrientation(part.body, physicsClientId=self.client)
-        return rf.compose((tuple(base[0]), tuple(base[1])), rf.inverse(part.in_model))
+        return rf.compose(part.body.pose(), rf.inverse(part.in_model))
 
     def twist(self) -> Twist:
         """World-frame velocity of the canonical (first movable) body's centre of mass."""
         part = self._movable()
-        if part is None:
-            return rf.ZERO_TWIST
-        lin, ang = pybullet.getBaseVelocity(part.body, physicsClientId=self.client)
-        return tuple(lin), tuple(ang)
+        return rf.ZERO_TWIST if part is None else part.body.twist()
 
     def link_states(self) -> List[Tuple[str, Pose, Twist]]:
         """(scoped name "model::link", world pose of the link frame, twist) of every link."""
@@ -126,16 +133,10 @@ class WorldModel:
                     model_pose = self.pose()
                 out.append((scoped, rf.compose(model_pose, link.in_model), rf.ZERO_TWIST))
             elif link.index < 0:
-                base = pybullet.getBasePositionAndOrientation(link.body,
-                                                              physicsClientId=self.client)
-                lin, ang = pybullet.getBaseVelocity(link.body, physicsClientId=self.client)
-                pose = rf.compose((tuple(base[0]), tuple(base[1])), link.in_body)
-                out.append((scoped, pose, (tuple(lin), tuple(ang))))
+                out.append((scoped, rf.compose(link.body.pose(), link.in_body),
+                            link.body.twist()))
             else:
-                state = pybullet.getLinkState(link.body, link.index, computeLinkVelocity=1,
-                                              physicsClientId=self.client)
-                out.append((scoped, (tuple(state[4]), tuple(state[5])),
-                            (tuple(state[6]), tuple(state[7]))))
+                out.append((scoped,) + link.body.link_frame(link.index))
         return out
 
     def link(self, name: str) -> LinkPart:
@@ -152,40 +153,7 @@ class WorldModel:
         bounding box is not finite out of the simulation for good (it then falls through
         every floor, and rays pass it by), and finite values written back do not undo that.
         Only a new body does (rebuild)."""
-        for part in self.parts:
-            if not part.movable:
-                continue
-            cid = self.client
-            pos, orn = pybullet.getBasePositionAndOrientation(part.body, physicsClientId=cid)
-            lin, ang = pybullet.getBaseVelocity(part.body, physicsClientId=cid)
-            values = list(pos) + list(orn) + list(lin) + list(ang)
-            joints = range(pybullet.getNumJoints(part.body, physicsClientId=cid))
-            for state in pybullet.getJointStates(part.body, joints, physicsClientId=cid) or ():
-                values.extend(state[:2])
-            if not all(math.isfinite(v) for v in values):
-                return False
-        return True
-
-    def rebuild(self) -> bool:
-        """Replace the bodies of a model that is not ``sound`` by new ones built from its spec
-        (at its spawn pose); whatever the world API applied to it goes (``on_rebuild``).
-        False if there is nothing to rebuild from (it is left as it is)."""
-        if self.rebuild_hook is None:
-            return False
-        old = [p.body for p in self.parts]
-        fresh = self.rebuild_hook()
-        if self.remove_hook is None:     # a robot's hook has replaced its own body
-            for body in old:
-                pybullet.removeBody(body, physicsClientId=self.client)
-        self.parts, self.links = fresh.parts, fresh.links
-        if self.on_rebuild is not None:
-            self.on_rebuild(self.name)
-        return True
-
-    def _repaired(self) -> None:
-        """Rebuild the model first if its physics state is no longer finite."""
-        if not self.sound():
-            self.rebuild()
+        return all(part.body.finite() for part in self.parts if part.movable)
 
     # --- changing ----------------------------------------------------------------------------
 
@@ -196,54 +164,123 @@ class WorldModel:
         self._repaired()
         self._pose = pose
         for part in self.parts:
-            pos, orn = rf.compose(pose, part.in_model)
-            pybullet.resetBasePositionAndOrientation(part.body, pos, orn,
-                                                     physicsClientId=self.client)
+            part.body.set_pose(rf.compose(pose, part.in_model))
             if part.movable:
-                pybullet.resetBaseVelocity(part.body, twist[0], twist[1],
-                                           physicsClientId=self.client)
+                part.body.set_twist(twist)
 
     def set_link_state(self, link: LinkPart, pose: Pose, twist: Twist) -> None:
         """Teleport one link (the base of a movable body) to ``pose`` with ``twist`` (a model
         whose state went NaN is rebuilt first, its links then found by name)."""
         if not self.sound() and self.rebuild():
             link = self.link(link.name)
-        body_pose = rf.compose(pose, rf.inverse(link.in_body))
-        pybullet.resetBasePositionAndOrientation(link.body, *body_pose,
-                                                 physicsClientId=self.client)
-        pybullet.resetBaseVelocity(link.body, twist[0], twist[1], physicsClientId=self.client)
+        link.body.set_pose(rf.compose(pose, rf.inverse(link.in_body)))
+        link.body.set_twist(twist)
 
     def reset(self) -> None:
         """Back to the spawn pose, at rest (joints at 0); a model whose state went NaN is
         rebuilt first (``sound``)."""
         self._repaired()
-        if self.reset_hook is not None:
-            self.reset_hook()
-            return
         self.set_state(self.spawn_pose, rf.ZERO_TWIST)
         for part in self.parts:
-            for j in range(pybullet.getNumJoints(part.body, physicsClientId=self.client)):
-                pybullet.resetJointState(part.body, j, 0.0, 0.0, physicsClientId=self.client)
+            part.body.zero_joints()
 
     def remove(self) -> None:
         """Take the model's bodies out of the physics."""
-        if self.remove_hook is not None:
-            self.remove_hook()
-            self.parts = []
-            return
         for part in self.parts:
-            pybullet.removeBody(part.body, physicsClientId=self.client)
+            part.body.remove()
         self.parts = []
+
+    def rebuild(self) -> bool:
+        """Replace the bodies of a model that is not ``sound`` by new ones built from what it
+        was made of (at its spawn pose); whatever the world API applied to it goes
+        (``on_rebuild``). False if it cannot be built again (it is left as it is)."""
+        fresh = self._built_again()
+        if fresh is None:
+            return False
+        self.parts, self.links = fresh
+        if self.on_rebuild is not None:
+            self.on_rebuild(self.name)
+        return True
+
+    def _built_again(self) -> Optional[Tuple[List[BodyPart], List[LinkPart]]]:
+        """New (parts, links) in place of the old bodies, which are gone; None if there is
+        nothing to build from."""
+        return None
+
+    def _repaired(self) -> None:
+        """Rebuild the model first if its physics state is no longer finite."""
+        if not self.sound():
+            self.rebuild()
+
+
+@dataclass
+class SdfModel(WorldModel):
+    """A model of an SDF world file or of a spawned SDF: built by engine.world_bullet from
+    ``world`` (the document it came from), where it is model ``name``."""
+
+    world: Optional[World] = None
+
+    def _built_again(self):
+        if self.world is None:
+            return None
+        client = next((p.body.client for p in self.parts), None)
+        if client is None:
+            return None
+        alone = World(self.world.name, self.world.path, (self.name,),
+                      self.world.model_shapes(self.name), (self.world.model(self.name),))
+        fresh = models_of_world(alone, build_world(alone, client), client)[0]
+        for part in self.parts:
+            part.body.remove()
+        return fresh.parts, fresh.links
+
+
+@dataclass
+class UrdfModel(WorldModel):
+    """A model spawned from a plain URDF (no robot plugins): one body loaded from ``urdf``
+    (the text engine.urdf_loader loads) by ``urdf_loader.load_movable``."""
+
+    urdf: str = ""
+
+    def _built_again(self):
+        if not self.urdf or not self.parts:
+            return None
+        old = self.parts[0].body
+        body = urdf_loader.load_movable(old.client, self.urdf)
+        old.remove()
+        parts, links, _ = urdf_parts(body)
+        body.set_pose(rf.compose(self.spawn_pose, parts[0].in_model))
+        return parts, links
+
+
+@dataclass
+class RobotModel(WorldModel):
+    """A robot with its plugins (world.sim_robot.SimRobot): its body (engine.physics.RobotBody)
+    resets, leaves and is built again as a robot does, its wheels braked."""
+
+    robot_body: Any = None
+
+    def reset(self) -> None:
+        self._repaired()
+        self.robot_body.reset_robot()
+
+    def remove(self) -> None:
+        self.robot_body.remove()
+        self.parts = []
+
+    def _built_again(self):
+        self.robot_body.rebuild()
+        parts, links, _ = urdf_parts(self.robot_body.body)
+        return parts, links
 
 
 class ModelRegistry:
     """The models in Gazebo's order: world file, robot, spawned (in spawn order)."""
 
-    def __init__(self):
+    def __init__(self, on_rebuild: Optional[Callable[[str], None]] = None):
+        """``on_rebuild``: told the name of a model whose bodies were built again
+        (WorldModel.rebuild), so that what the world API applied to the old bodies goes."""
         self._models: Dict[str, WorldModel] = {}   # insertion order is the world order
-        # told the name of a model whose bodies were rebuilt (WorldModel.rebuild): the
-        # simulation forgets what the world API applied to the old bodies
-        self.on_rebuild: Optional[Callable[[str], None]] = None
+        self.on_rebuild = on_rebuild
 
     def names(self) -> List[str]:
         return list(self._models)
@@ -261,7 +298,7 @@ class ModelRegistry:
     def add(self, model: WorldModel) -> None:
         """Append ``model``; RequestError if its name is taken."""
         if model.name in self._models:
-            raise RequestError("SpawnModel: Failure - entity already exists.")
+            raise RequestError(ENTITY_EXISTS)
         if model.on_rebuild is None:
             model.on_rebuild = self._rebuilt
         self._models[model.name] = model
@@ -295,15 +332,9 @@ class ModelRegistry:
         raise KeyError(name)
 
 
-def _base_pose(body: int, cid: int) -> Pose:
-    pos, orn = pybullet.getBasePositionAndOrientation(body, physicsClientId=cid)
-    return tuple(pos), tuple(orn)
-
-
-def models_of_world(world: World, bodies: Dict[str, int], cid: int,
-                    source: str = "world") -> List[WorldModel]:
-    """The WorldModels of a world built by world_bullet.build_world (shape name -> body)."""
-    from ..engine.world_bullet import link_com_pose
+def models_of_world(world: World, bodies: Dict[str, Body], client: int) -> List[SdfModel]:
+    """The models of a world built by world_bullet.build_world (shape name -> body id) in
+    pybullet client ``client``."""
     out = []
     for spec in world.model_specs:
         model_pose = pose_from_xyz_rpy(spec.pose)
@@ -312,11 +343,12 @@ def models_of_world(world: World, bodies: Dict[str, int], cid: int,
         parts: List[BodyPart] = []
         seen = set()
         for shape in shapes:
-            body = bodies.get(shape.name)
-            if body is None or body in seen:
+            uid = bodies.get(shape.name)
+            if uid is None or uid in seen:
                 continue
-            seen.add(body)
-            parts.append(BodyPart(body, rf.compose(to_model, _base_pose(body, cid)),
+            seen.add(uid)
+            body = Body(client, uid)
+            parts.append(BodyPart(body, rf.compose(to_model, body.pose()),
                                   movable=not shape.static))
         link_body = {s.link: bodies[s.name] for s in shapes
                      if not s.static and s.name in bodies}
@@ -324,55 +356,44 @@ def models_of_world(world: World, bodies: Dict[str, int], cid: int,
         for link in spec.links:
             local = link.scoped[len(spec.name) + 2:]
             link_pose = pose_from_xyz_rpy(link.pose)
-            body = link_body.get(link.scoped)
-            if body is None:
+            uid = link_body.get(link.scoped)
+            if uid is None:
                 links.append(LinkPart(local, in_model=rf.compose(to_model, link_pose)))
             else:
                 com = link_com_pose(link)
                 in_body = rf.compose(rf.inverse((tuple(com[0]), tuple(com[1]))), link_pose)
-                links.append(LinkPart(local, body=body, in_body=in_body))
+                links.append(LinkPart(local, body=Body(client, uid), in_body=in_body))
         geoms = [s.name.rsplit("::", 1)[1] for s in shapes if s.collision]
-        out.append(WorldModel(spec.name, spec.static, source, parts, links, model_pose, cid,
-                              joints=list(spec.joints),
-                              joint_types=dict(zip(spec.joints, spec.joint_types)), geoms=geoms,
-                              rebuild_hook=_sdf_rebuilder(world, spec.name, cid, source)))
+        out.append(SdfModel(spec.name, spec.static, parts, links, model_pose,
+                            joints=list(spec.joints),
+                            joint_types=dict(zip(spec.joints, spec.joint_types)), geoms=geoms,
+                            world=world))
     return out
 
 
-def _sdf_rebuilder(world: World, name: str, cid: int, source: str
-                   ) -> Callable[[], WorldModel]:
-    """A rebuild_hook: model ``name`` of ``world`` built again, alone, at its spawn pose."""
-    def rebuild() -> WorldModel:
-        from ..engine.world_bullet import build_world
-        alone = World(world.name, world.path, (name,), world.model_shapes(name),
-                      (world.model(name),))
-        return models_of_world(alone, build_world(alone, cid), cid, source)[0]
-    return rebuild
-
-
-def model_of_urdf_body(name: str, body: int, cid: int, source: str,
-                       reset_hook: Optional[Callable[[], None]] = None,
-                       spawn_pose: Optional[Pose] = None,
-                       remove_hook: Optional[Callable[[], None]] = None,
-                       collisions: Optional[Dict[str, List[str]]] = None) -> WorldModel:
-    """A WorldModel of a body loaded from a URDF: the model frame is its root link's frame;
-    links are the root and every jointed link (fixed links merged, as Gazebo lumps them);
-    ``collisions``: the URDF's RobotDescription.collision_names(), the model's geoms in
-    link order."""
-    info = pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)
-    com_in_root = (tuple(info[3]), tuple(info[4]))
-    root = pybullet.getBodyInfo(body, physicsClientId=cid)[0].decode()
-    links = [LinkPart(root, body=body, in_body=rf.inverse(com_in_root))]
+def urdf_parts(body: Body) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
+    """(parts, links, joint names) of a body loaded from a URDF: the model frame is its root
+    link's frame; links are the root and every jointed link (fixed links merged, as Gazebo
+    lumps them)."""
+    com_in_root = body.com_in_root()
+    links = [LinkPart(body.root_link(), body=body, in_body=rf.inverse(com_in_root))]
     joints = []
-    for j in range(pybullet.getNumJoints(body, physicsClientId=cid)):
-        joint = pybullet.getJointInfo(body, j, physicsClientId=cid)
-        links.append(LinkPart(joint[12].decode(), body=body, index=j))
-        joints.append(joint[1].decode())
-    part = BodyPart(body, com_in_root, movable=True)
+    for joint in body.joints():
+        links.append(LinkPart(joint.child_link, body=body, index=joint.index))
+        joints.append(joint.name)
+    return [BodyPart(body, com_in_root, movable=True)], links, joints
+
+
+def urdf_model(kind, name: str, body: Body, spawn_pose: Optional[Pose] = None,
+               collisions: Optional[Dict[str, List[str]]] = None, **fields) -> WorldModel:
+    """A ``kind`` (UrdfModel or RobotModel) of a body loaded from a URDF, at ``spawn_pose``
+    (None: where the body is now); ``collisions``: the URDF's
+    RobotDescription.collision_names(), the model's geoms in link order; ``fields``: the
+    kind's own (urdf, robot_body)."""
+    parts, links, joints = urdf_parts(body)
     geoms = [geom for link in links for geom in (collisions or {}).get(link.name, ())]
-    model = WorldModel(name, False, source, [part], links, spawn_pose or rf.IDENTITY, cid,
-                       joints=joints, geoms=geoms, reset_hook=reset_hook,
-                       remove_hook=remove_hook)
+    model = kind(name, False, parts, links, spawn_pose or rf.IDENTITY, joints=joints,
+                 geoms=geoms, **fields)
     if spawn_pose is None:
         model.spawn_pose = model.pose()
     return model

@@ -12,7 +12,7 @@ import xmlrpc.client
 
 import pytest
 
-from unit_helpers import free_port
+from unit_helpers import free_port, stop_process, wait_for
 
 pytestmark = pytest.mark.skipif(
     not (shutil.which("rosmaster") and shutil.which("rostopic") and shutil.which("rosservice")),
@@ -38,16 +38,6 @@ def sim_executable() -> str:
     return found[0]
 
 
-def wait_for(predicate, timeout: float, step: float = 0.05):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        time.sleep(step)
-    return predicate()
-
-
 class Process:
     """A child process with its output collected (both streams)."""
 
@@ -67,13 +57,7 @@ class Process:
         return "".join(self.lines)
 
     def stop(self, sig=signal.SIGINT, timeout: float = 20.0):
-        if self.proc.poll() is None:
-            self.proc.send_signal(sig)
-            try:
-                self.proc.wait(timeout)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait(10)
+        stop_process(self.proc, timeout, sig)
 
 
 class Master:

@@ -15,10 +15,12 @@ import pytest
 from PIL import Image
 
 from tutorial_turtlebot.sim.devices import camera
+from tutorial_turtlebot.sim.engine import rendering
 from tutorial_turtlebot.sim.engine import physics as physics_module
-from tutorial_turtlebot.sim.devices.camera import (BACKGROUND_RGB, CameraIntrinsics, CameraRenderer,
-                                       depth_image, jpeg_bytes, pointcloud_bytes,
-                                       pointcloud_xyz, validate_spec, view_matrix)
+from tutorial_turtlebot.sim.devices.camera import (CameraIntrinsics, depth_image, jpeg_bytes,
+                                                   pointcloud_bytes, pointcloud_xyz)
+from tutorial_turtlebot.sim.engine.rendering import (BACKGROUND_RGB, CameraRenderer, validate_spec,
+                                                     view_matrix)
 from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
@@ -123,27 +125,27 @@ def test_view_matrix_matches_pybullets_look_at():
 def test_egl_loads_on_this_machine():
     # ENVIRONMENT-DEPENDENT: true where Mesa's EGL is installed (Debian libegl1 and
     # libgl1-mesa-dri, as tools/setup.sh installs them) or a GPU driver provides EGL.
-    assert camera.egl_available(), ("pybullet's EGL plugin does not render here: install "
+    assert rendering.egl_available(), ("pybullet's EGL plugin does not render here: install "
                                     "libegl1 and libgl1-mesa-dri")
     cid = pybullet.connect(pybullet.DIRECT)
     try:
-        assert camera.enable_egl(cid) is True
-        assert camera.enable_egl(cid) is True          # again: harmless
-        assert camera.egl_enabled(cid)
+        assert rendering.enable_egl(cid) is True
+        assert rendering.enable_egl(cid) is True          # again: harmless
+        assert rendering.egl_enabled(cid)
     finally:
-        camera.disable_egl(cid)
+        rendering.disable_egl(cid)
         pybullet.disconnect(cid)
-    assert not camera.egl_enabled(cid)
+    assert not rendering.egl_enabled(cid)
 
 
 def test_enable_egl_says_false_without_the_plugin(monkeypatch):
-    monkeypatch.setattr(camera, "_egl_works", None)
-    monkeypatch.setattr(camera, "egl_plugin_path", lambda: None)
-    assert camera.enable_egl(0) is False
-    monkeypatch.setattr(camera, "_egl_works", None)
-    monkeypatch.setattr(camera, "egl_plugin_path", lambda: "/nonexistent/eglRenderer.so")
-    assert camera.egl_available() is False            # the child process fails, not this one
-    camera.disable_egl(12345)                          # nothing loaded: no error
+    monkeypatch.setattr(rendering, "_egl_works", None)
+    monkeypatch.setattr(rendering, "egl_plugin_path", lambda: None)
+    assert rendering.enable_egl(0) is False
+    monkeypatch.setattr(rendering, "_egl_works", None)
+    monkeypatch.setattr(rendering, "egl_plugin_path", lambda: "/nonexistent/eglRenderer.so")
+    assert rendering.egl_available() is False            # the child process fails, not this one
+    rendering.disable_egl(12345)                          # nothing loaded: no error
 
 
 # --- rendering the turtlebot3_world --------------------------------------------------------------
@@ -151,14 +153,14 @@ def test_enable_egl_says_false_without_the_plugin(monkeypatch):
 def _simulation(monkeypatch, model, renderer):
     """A Simulation at the turtlebot3_world spawn whose client has the EGL plugin (loaded right
     after connect, before any body) when ``renderer`` is "egl"."""
-    if renderer == "egl" and not camera.egl_available():
+    if renderer == "egl" and not rendering.egl_available():
         pytest.skip("EGL does not render on this machine (see test_egl_loads_on_this_machine)")
     connect = pybullet.connect
 
     def connect_with_egl(*args, **kwargs):
         cid = connect(*args, **kwargs)
         if renderer == "egl":
-            assert camera.enable_egl(cid)
+            assert rendering.enable_egl(cid)
         return cid
     monkeypatch.setattr(physics_module.pybullet, "connect", connect_with_egl)
     sim = Simulation(SimConfig(model=model, camera=True))
@@ -175,7 +177,7 @@ def renderer(request):
 def waffle_pi(monkeypatch, renderer):
     sim = _simulation(monkeypatch, "waffle_pi", renderer)
     yield sim, renderer == "egl"
-    camera.disable_egl(sim.physics.client)
+    rendering.disable_egl(sim.physics.client)
     sim.close()
 
 
@@ -202,7 +204,7 @@ def _cast(sim, position, ends):
 
 def test_waffle_pi_sees_the_green_head_where_it_is(waffle_pi):
     sim, egl = waffle_pi
-    spec = sim.camera_spec
+    spec = sim.robot.camera_spec
     position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
     assert position[:2] == pytest.approx((-1.924, -0.5), abs=0.002)   # spawn + camera offset
     rgb, depth = CameraRenderer(sim.physics.client, spec, use_egl=egl).render(
@@ -229,7 +231,7 @@ def test_waffle_pi_sees_the_green_head_where_it_is(waffle_pi):
 
 def test_image_is_right_side_up(waffle_pi):
     sim, egl = waffle_pi
-    spec = sim.camera_spec
+    spec = sim.robot.camera_spec
     position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
     rgb, depth = CameraRenderer(sim.physics.client, spec, use_egl=egl).render(
         position, rotation, depth=True)
@@ -259,7 +261,7 @@ def test_depth_matches_the_geometry(waffle_pi):
     """Over a grid of pixels, depth is the distance along the optical axis to what a ray through
     the pixel meets (away from edges, where a pixel may show either side)."""
     sim, egl = waffle_pi
-    spec = sim.camera_spec
+    spec = sim.robot.camera_spec
     position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
     _, depth = CameraRenderer(sim.physics.client, spec, use_egl=egl).render(
         position, rotation, depth=True)
@@ -281,7 +283,7 @@ def test_depth_matches_the_geometry(waffle_pi):
 def test_the_robot_stays_out_of_its_own_view(monkeypatch, renderer, model):
     sim = _simulation(monkeypatch, model, renderer)
     try:
-        spec = sim.camera_spec
+        spec = sim.robot.camera_spec
         if renderer == "tiny" and spec.width > 640:      # TinyRenderer: a quarter of the pixels
             spec = dataclasses.replace(spec, width=spec.width // 2, height=spec.height // 2)
         view = CameraRenderer(sim.physics.client, spec, use_egl=renderer == "egl")
@@ -292,7 +294,7 @@ def test_the_robot_stays_out_of_its_own_view(monkeypatch, renderer, model):
         assert np.array_equal(with_robot, without_robot)
         assert np.array_equal(depth_with, depth_without)
     finally:
-        camera.disable_egl(sim.physics.client)
+        rendering.disable_egl(sim.physics.client)
         sim.close()
 
 
@@ -301,7 +303,7 @@ def test_autorace_camera_looks_down_10_degrees(monkeypatch):
     height / sin(0.174) ahead."""
     sim = _simulation(monkeypatch, "burger", "tiny")
     try:
-        spec = sim.camera_spec
+        spec = sim.robot.camera_spec
         position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
         assert rotation[:, 2] == pytest.approx((math.cos(0.174), 0.0, -math.sin(0.174)),
                                                abs=1e-3)
@@ -323,7 +325,7 @@ def test_large_images_are_drawn_in_tiles_with_egl(monkeypatch):
     4 tiles, and every column of it is its own (no stretched 1024-pixel image)."""
     sim = _simulation(monkeypatch, "waffle", "egl")
     try:
-        spec = sim.camera_spec
+        spec = sim.robot.camera_spec
         view = CameraRenderer(sim.physics.client, spec, use_egl=True)
         assert view.tile_count == 4
         position, rotation = sim.robot.body.frame_pose(OPTICAL_FRAME)
@@ -335,7 +337,7 @@ def test_large_images_are_drawn_in_tiles_with_egl(monkeypatch):
                 assert depth[row, col] == pytest.approx(
                     _floor_depth(spec, position, rotation, row), rel=0.01)
     finally:
-        camera.disable_egl(sim.physics.client)
+        rendering.disable_egl(sim.physics.client)
         sim.close()
 
 

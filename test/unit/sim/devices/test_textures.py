@@ -12,9 +12,11 @@ import pybullet
 import pytest
 
 from tutorial_turtlebot.sim.devices import camera
+from tutorial_turtlebot.sim.engine import rendering
 from tutorial_turtlebot.sim.files import mesh_file
 from tutorial_turtlebot.sim.engine import physics as physics_module
-from tutorial_turtlebot.sim.devices.camera import CameraRenderer, CameraIntrinsics
+from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
+from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
 from tutorial_turtlebot.sim.files.mesh_file import cache_clear, load_mesh, write_obj_parts
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files import urdf_meshes
@@ -78,7 +80,7 @@ def renderer(request):
 
 def simulation(monkeypatch, world, renderer):
     """A Waffle Pi at the origin of ``world``, facing +x, its camera drawn by ``renderer``."""
-    if renderer == "egl" and not camera.egl_available():
+    if renderer == "egl" and not rendering.egl_available():
         pytest.skip("EGL does not render on this machine")
     if renderer == "tiny":
         monkeypatch.setattr(physics_module, "enable_egl", lambda cid: False)
@@ -319,7 +321,7 @@ def test_a_urdf_mesh_is_drawn_textured(tmp_path, renderer):
     """urdf_meshes: a URDF's textured mesh visual is textured in pybullet's copy, and a
     visual with a URDF <material> colour is drawn in that colour."""
     from xml.etree import ElementTree
-    if renderer == "egl" and not camera.egl_available():
+    if renderer == "egl" and not rendering.egl_available():
         pytest.skip("EGL does not render on this machine")
     write_textured_obj(tmp_path)
     urdf = """<robot name="r"><link name="a">
@@ -333,10 +335,10 @@ def test_a_urdf_mesh_is_drawn_textured(tmp_path, renderer):
     cid = pybullet.connect(pybullet.DIRECT)
     try:
         if renderer == "egl":
-            assert camera.enable_egl(cid)
+            assert rendering.enable_egl(cid)
         pybullet.loadURDF(str(tmp_path / "r.urdf"), basePosition=(CUBE_X + 0.3, 0, 0.3),
                           useFixedBase=True, physicsClientId=cid)
-        camera.note_textures(cid)
+        rendering.note_textures(cid)
         spec = CameraSpec(width=320, height=240, hfov=1.085595, near=0.03, far=100.0, rate=30.0)
         view = CameraRenderer(cid, spec, use_egl=renderer == "egl")
         rotation = np.array([[0, 0, 1], [-1, 0, 0], [0, -1, 0]], dtype=float)  # optical, +x
@@ -353,7 +355,7 @@ def test_a_urdf_mesh_is_drawn_textured(tmp_path, renderer):
         assert_textured(Fake, rgb, centre_y=0.4)
         assert looks(face_colour(Fake, rgb, -0.4, 0.3), (255, 0, 255))
     finally:
-        camera.disable_egl(cid)
+        rendering.disable_egl(cid)
         pybullet.disconnect(physicsClientId=cid)
         urdf_meshes.cache_clear()
 
@@ -389,7 +391,7 @@ def test_textures_beyond_the_budget_are_drawn_in_their_colour(tmp_path, monkeypa
     """TinyRenderer decodes a texture once per visual that uses it: past MAX_TEXTURE_PIXELS
     per simulation, a textured mesh is drawn in its colours, with one line on stderr."""
     write_textured_obj(tmp_path, kd="1 0 0")           # 16 x 16 px texture, tinted red
-    monkeypatch.setattr(camera, "MAX_TEXTURE_PIXELS", 300)
+    monkeypatch.setattr(rendering, "MAX_TEXTURE_PIXELS", 300)
     world = write_world(tmp_path, mesh_model("first", "box.obj", y=0.4),
                         mesh_model("second", "box.obj", y=-0.4))
     sim = simulation(monkeypatch, world, "tiny")

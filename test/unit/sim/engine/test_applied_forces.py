@@ -196,7 +196,7 @@ def test_a_robot_wheel_effort_is_held_by_its_diff_drive(empty):
     assert math.hypot(x - x0, y - y0) < 0.01 and abs(z) < 0.01
     # driving, the effort on one wheel still leaves the robot's motion to the drive
     wc.apply_joint_effort("wheel_left_joint", 1.0, 0, NS)
-    sim.command(0.1, 0.0)
+    sim.robot.command(0.1, 0.0)
     run(sim, 1.0)
     (x1, y1, _), _ = sim.robot.ground_truth()
     assert x1 - x > 0.05 and abs(y1 - y) < 0.01

@@ -149,6 +149,8 @@ def test_a_huge_quaternion_is_normalised_without_overflow(world, component):
 
 def test_quaternions_nan_refused_zero_is_identity():
     assert limits.unit_quaternion((0, 0, 0, 0)) == (0.0, 0.0, 0.0, 1.0)
+    assert limits.unit_quaternion((0.0, 0.0, 2.0, 2.0)) == pytest.approx(
+        (0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5)))
     assert limits.unit_quaternion((1e308, 1e308, 1e308, 1e308)) == pytest.approx((0.5,) * 4)
     for bad in ((NAN, 0, 0, 1), (math.inf, 0, 0, 1)):
         with pytest.raises(ValueError, match="orientation"):

@@ -316,7 +316,7 @@ def test_a_robot_urdf_file_with_relative_meshes_is_simulated(tmp_path):
     sim = Simulation(SimConfig(world="empty", urdf=path))
     try:
         run(sim, 0.2)
-        assert sim.ground_truth()[0][2] == pytest.approx(0.0, abs=0.003)
+        assert sim.robot.ground_truth()[0][2] == pytest.approx(0.0, abs=0.003)
     finally:
         sim.close()
 

@@ -57,7 +57,7 @@ def test_its_scan_matches_the_built_in_primitive_copy_ray_by_ray():
         try:
             for _ in range(200):
                 sim.step()
-            scans.append(np.array(sim.scan(), dtype=float))
+            scans.append(np.array(sim.robot.scan(), dtype=float))
         finally:
             sim.close()
     mesh, primitive = scans
@@ -185,7 +185,7 @@ def test_the_camera_draws_the_meshes_as_the_primitive_copy_looks():
         try:
             for _ in range(100):
                 sim.step()
-            images.append(sim.camera_image()[0].astype(float))
+            images.append(sim.robot.camera_image()[0].astype(float))
         finally:
             sim.close()
     mesh, primitive, turned = images

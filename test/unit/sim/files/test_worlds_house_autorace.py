@@ -401,7 +401,7 @@ def test_camera_view_at_the_spawn():
     try:
         for _ in range(40):                                      # settle on the wheels
             sim.step()
-        rgb, _ = sim.camera_image()
+        rgb, _ = sim.robot.camera_image()
     finally:
         sim.close()
     height, width, _ = rgb.shape
@@ -421,7 +421,7 @@ def test_robot_stands_on_the_course_at_the_spawn():
     try:
         for _ in range(400):                                     # 1 s of sim time
             sim.step()
-        (px, py, pz), _ = sim.ground_truth()
+        (px, py, pz), _ = sim.robot.ground_truth()
     finally:
         sim.close()
     assert (px, py) == pytest.approx(AUTORACE_SPAWN[:2], abs=0.005)

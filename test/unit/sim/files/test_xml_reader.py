@@ -9,7 +9,7 @@ from tutorial_turtlebot.errors import UrdfError, UserError, WorldError
 from tutorial_turtlebot.sim.files import xml_reader
 from tutorial_turtlebot.package_data import data_dir
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.files.spawn_request import parse_spawn
+from tutorial_turtlebot.sim.world.spawn_request import parse_spawn
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf_text
 from tutorial_turtlebot.sim.world.world_control import WorldControl
 from tutorial_turtlebot.sim.files.world_sdf import load_model_xml

@@ -54,7 +54,7 @@ def poison_the_bullet_state(sim):
     the spawned SDF box and the spawned URDF model."""
     cid = sim.physics.client
     for name in (ROBOT, "box", "w"):
-        body = sim.models.get(name).parts[0].body
+        body = sim.models.get(name).parts[0].body.uid
         pybullet.resetBaseVelocity(body, (NAN, 0, 0), (0, 0, 0), physicsClientId=cid)
     run(sim, 0.2)
     assert not all(math.isfinite(v) for v in _state(sim, ROBOT))
@@ -73,7 +73,7 @@ def assert_good(sim, wc, spawn_z_box, spawn_z_wheel):
     assert (x, y) == pytest.approx((0.0, 0.0), abs=0.01) and abs(z) < 0.01
     assert wc.get_model_state("box")[0][0] == pytest.approx((2, 2, spawn_z_box), abs=0.01)
     assert wc.get_model_state("w")[0][0][2] == pytest.approx(spawn_z_wheel, abs=0.02)
-    ranges = np.asarray(sim.scan())
+    ranges = np.asarray(sim.robot.scan())
     assert np.isfinite(ranges).any()
     assert np.nanmin(ranges) == pytest.approx(0.9, abs=0.1)   # the wall's face, 0.9 m ahead
 

@@ -3,6 +3,8 @@ import math
 
 import pytest
 
+from tutorial_turtlebot.sim.files.limits import unit_quaternion
+from tutorial_turtlebot.sim.kinematics import quat_from_rpy, to_body
 from tutorial_turtlebot.sim.world import reference_frames as rf
 
 
@@ -25,8 +27,8 @@ def test_relative_pose_is_frame_inverse_times_pose():
 
 
 def test_compose_undoes_relative_pose():
-    frame = ((0.3, -1.0, 0.2), rf.normalized((0.1, 0.2, 0.3, 0.9)))
-    pose = ((2.0, 1.0, -0.5), rf.normalized((0.4, -0.1, 0.2, 0.8)))
+    frame = ((0.3, -1.0, 0.2), unit_quaternion((0.1, 0.2, 0.3, 0.9)))
+    pose = ((2.0, 1.0, -0.5), unit_quaternion((0.4, -0.1, 0.2, 0.8)))
     p, q = rf.compose(frame, rf.relative_pose(pose, frame))
     approx(p, pose[0])
     approx(q, pose[1])
@@ -54,11 +56,14 @@ def test_set_link_twist_subtracts_the_frame_velocity_unrotated():
     approx(w, (0.0, 0.0, 0.75))
 
 
-def test_quaternions_are_normalised_and_zero_is_identity():
-    approx(rf.normalized((0.0, 0.0, 2.0, 2.0)), (0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5)))
-    assert rf.normalized((0.0, 0.0, 0.0, 0.0)) == rf.IDENTITY_QUAT
-    with pytest.raises(ValueError):
-        rf.normalized((0.0, float("nan"), 0.0, 1.0))
+def test_rotate_is_to_body_of_the_conjugate():
+    """rotate is R v, kinematics.to_body R^T v: one formula, so bit for bit the same."""
+    q = quat_from_rpy(0.3, -0.7, 2.1)
+    v = (0.4, -1.3, 2.2)
+    assert rf.rotate(q, v) == to_body(rf.conjugate(q), v)
+    assert rf.rotate(rf.conjugate(q), v) == to_body(q, v)
+    approx(rf.rotate(q, to_body(q, v)), v)
+    approx(rf.rotate(yaw_quat(math.pi / 2), (1.0, 0.0, 0.0)), (0.0, 1.0, 0.0))
 
 
 def test_world_frame_names():

@@ -133,8 +133,8 @@ class FakeClock:
 def wait(pacer, sim):
     """What the sim's loop does after a step, messages aside: sleep when the batch is done."""
     end = pacer.batch_end(sim)
-    if end is not None:
-        pacer.sleep_until(end)
+    if end is not None and end > pacer._clock():
+        pacer._clock.sleep(end - pacer._clock())
 
 
 def run(pacer, clock, sim_start, sim_step, steps, compute=0.0005):
@@ -149,7 +149,7 @@ def run(pacer, clock, sim_start, sim_step, steps, compute=0.0005):
 
 def make(rtf, min_sleep=0.001):
     clock = FakeClock()
-    return Pacer(rtf, clock=clock, sleep=clock.sleep, min_sleep=min_sleep), clock
+    return Pacer(rtf, clock=clock, min_sleep=min_sleep), clock
 
 
 def test_rtf_1_keeps_wall_time_with_sim_time():
@@ -166,7 +166,7 @@ def test_default_sleeps_once_per_20_ms_of_steps():
     2.5 ms steps costing 0.1 ms sleep after every 9th step (21.6 ms ahead). After each wait the
     sim is less than 20 ms ahead of wall time, and never behind."""
     clock = FakeClock()
-    pacer = Pacer(1.0, clock=clock, sleep=clock.sleep)
+    pacer = Pacer(1.0, clock=clock)
     sim = 0.0
     for _ in range(400):
         clock.now += 0.0001
@@ -178,40 +178,37 @@ def test_default_sleeps_once_per_20_ms_of_steps():
     assert 1.0 - Pacer.MIN_SLEEP < clock.now - 100.0 <= 1.0
 
 
-def test_wall_of_and_sleep_until_send_each_moment_on_time():
+def test_wall_of_says_when_each_moment_is_due():
     """What the sim made ahead leaves when due: wall_of maps sim time to the clock (at factor 2,
-    sim 1.0 s is wall 0.5 s after the anchor) and sleep_until sleeps exactly there, never for
-    less than SHORTEST_SLEEP."""
+    sim 1.0 s is wall 0.5 s after the anchor, and after a restart from that moment on)."""
     clock = FakeClock()
-    pacer = Pacer(2.0, clock=clock, sleep=clock.sleep)
+    pacer = Pacer(2.0, clock=clock)
     assert pacer.wall_of(1.0) == pytest.approx(100.5)
-    pacer.sleep_until(pacer.wall_of(0.01))
-    assert clock.now == pytest.approx(100.005)
-    pacer.sleep_until(clock.now + Pacer.SHORTEST_SLEEP / 2)
-    assert clock.sleeps == [pytest.approx(0.005)]
-    pacer.sleep_until(clock.now - 1.0)  # in the past: no sleep
-    assert len(clock.sleeps) == 1
+    assert pacer.wall_of(0.01) == pytest.approx(100.005)
+    clock.now = 103.0
+    pacer.restart(4.0)
+    assert pacer.wall_of(5.0) == pytest.approx(103.5)
 
 
 def test_ahead_forgives_a_large_debt():
     """ahead() is how far sim time runs ahead of the clock; far behind (a stall) the pacer
     re-anchors at the present instead of racing to catch up; at factor 0 it is always 0."""
     clock = FakeClock()
-    pacer = Pacer(1.0, clock=clock, sleep=clock.sleep)
+    pacer = Pacer(1.0, clock=clock)
     assert pacer.ahead(0.015) == pytest.approx(0.015)
     clock.now += 0.1
     assert pacer.ahead(0.015) == pytest.approx(-0.085)
     clock.now += 1.0
     assert pacer.ahead(0.015) == 0.0
     assert pacer.wall_of(0.025) == pytest.approx(clock.now + 0.01)
-    assert Pacer(0.0, clock=clock, sleep=clock.sleep).ahead(5.0) == 0.0
+    assert Pacer(0.0, clock=clock).ahead(5.0) == 0.0
 
 
 def test_set_rtf_changes_the_factor_from_now_on():
     """set_physics_properties' max_update_rate: a new factor, anchored at the present; 0 stops
     all sleeping, and a bad factor is refused."""
     clock = FakeClock()
-    pacer = Pacer(1.0, clock=clock, sleep=clock.sleep)
+    pacer = Pacer(1.0, clock=clock)
     clock.now += 0.5
     pacer.set_rtf(4.0, 0.5)
     assert pacer.wall_of(1.5) == pytest.approx(clock.now + 0.25)

@@ -71,9 +71,9 @@ def test_robots_collide(empty):
     sim, wc = empty
     wc.spawn("waffle", urdf_text("waffle"), at(0.8, 0.0), kind="urdf", robot_namespace="w")
     waffle = sim.robots["waffle"]
-    sim.command(0.22, 0.0)
+    sim.robot.command(0.22, 0.0)
     run(sim, 8.0)
-    burger_x = sim.ground_truth()[0][0]
+    burger_x = sim.robot.ground_truth()[0][0]
     waffle_x = waffle.ground_truth()[0][0]
     assert burger_x < waffle_x - 0.15       # centres never closer than the two half-bodies
     assert burger_x > 0.3                   # it did drive up to the waffle
@@ -85,7 +85,7 @@ def test_each_robot_obeys_its_own_commands(empty):
     sim.robots["tb3_1"].command(0.2, 0.0)
     run(sim, 2.0)
     assert sim.robots["tb3_1"].odom().position[0] > 0.3
-    assert abs(sim.odom().position[0]) < 0.01
+    assert abs(sim.robot.odom().position[0]) < 0.01
 
 
 def test_namespace_and_name_conflicts_are_refused(empty):
@@ -125,9 +125,9 @@ def test_a_bad_plugin_block_refuses_the_spawn(empty, edit, words):
     assert message.startswith("SpawnModel: Failure - model_xml of bad:") and words in message
     assert "\n" not in message
     assert "bad" not in sim.models.names() and set(sim.robots) == {"turtlebot3_burger"}
-    sim.command(0.2, 0.0)
+    sim.robot.command(0.2, 0.0)
     run(sim, 1.0)
-    assert sim.odom().position[0] > 0.1
+    assert sim.robot.odom().position[0] > 0.1
 
 
 def test_delete_removes_a_robot_and_frees_its_place(empty):
@@ -138,7 +138,7 @@ def test_delete_removes_a_robot_and_frees_its_place(empty):
     wc.delete("tb3_1")
     assert "tb3_1" not in sim.robots and all(robot is not None and robot.name != "tb3_1"
                                              for robot, _ in run_due(sim))
-    assert np.isinf(sim.scan()[0])                 # nothing ahead any more
+    assert np.isinf(sim.robot.scan()[0])                 # nothing ahead any more
     wc.spawn("tb3_1", urdf_text("burger"), at(1.0, 0.0), kind="urdf", robot_namespace="tb3_1")
     assert "tb3_1" in sim.robots
 
@@ -207,7 +207,7 @@ def test_the_urdf_makes_the_robot(tmp_path):
     path.write_text(edited)
     sim = Simulation(SimConfig(model="burger", world="empty", urdf=str(path)))
     try:
-        assert len(sim.scan()) == 24 and sim.laser.angle_increment == pytest.approx(6.28319 / 23)
+        assert len(sim.robot.scan()) == 24 and sim.robot.laser.angle_increment == pytest.approx(6.28319 / 23)
         assert sim.robot.drive.separation == 0.200
     finally:
         sim.close()
@@ -223,10 +223,10 @@ def test_a_camera_added_to_the_burger_is_simulated(tmp_path):
     path.write_text(urdf_text("burger").replace("</robot>", snippet + "</robot>"))
     sim = Simulation(SimConfig(model="burger", world="turtlebot3_world", urdf=str(path)))
     try:
-        spec = sim.camera_spec
+        spec = sim.robot.camera_spec
         assert (spec.width, spec.height, spec.rate) == (640, 480, 30.0)
         assert sim.robot.camera_sensor.frame == "camera_optical_frame"
-        rgb, _ = sim.camera_image()
+        rgb, _ = sim.robot.camera_image()
         assert rgb.shape == (480, 640, 3) and rgb.std() > 5   # the arena, not a blank image
     finally:
         sim.close()
@@ -236,13 +236,13 @@ def test_a_camera_looks_along_its_links_x_axis():
     """Gazebo renders a camera along +x of its <gazebo reference> link (camera_rgb_frame on a
     Waffle Pi): the image equals one rendered from the URDF's optical frame, which the
     TurtleBot3 URDF puts on that axis (rpy -1.57 0 -1.57: within 1 mrad of it)."""
-    from tutorial_turtlebot.sim.devices.camera import CameraRenderer
+    from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
     sim = Simulation(SimConfig(model="waffle_pi", world="turtlebot3_world"))
     try:
         assert sim.robot.camera_sensor.link == "camera_rgb_frame"
-        rgb, _ = sim.camera_image()
+        rgb, _ = sim.robot.camera_image()
         position, rotation = sim.robot.body.frame_pose("camera_rgb_optical_frame")
-        reference, _ = CameraRenderer(sim.physics.client, sim.camera_spec,
+        reference, _ = CameraRenderer(sim.physics.client, sim.robot.camera_spec,
                                       use_egl=sim.physics.egl).render(position, rotation)
         assert rgb.std() > 5
         assert np.mean(np.abs(rgb.astype(int) - reference.astype(int))) < 2.0
@@ -271,7 +271,7 @@ def test_a_spawn_that_fails_at_any_stage_leaves_no_body(empty, monkeypatch, stag
     def boom(*_args, **_kwargs):
         raise RuntimeError("broken on purpose")
     target = {"rays": (sim_robot, "ray_directions"), "camera": (sim_robot, "CameraRenderer"),
-              "model": (simulation, "model_of_urdf_body")}[stage]
+              "model": (simulation, "urdf_model")}[stage]
     sim, wc = empty
     names = sim.models.names()
     assert _nothing_at(sim, 1.0, 1.0)

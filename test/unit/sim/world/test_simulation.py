@@ -59,8 +59,8 @@ def collision_points(description, ring=16):
 
 def world_outline(sim):
     """(x, y) of the robot's collision points in the world, tilt included, where it is now."""
-    pos, orn = sim.ground_truth()
-    world = collision_points(sim.description) @ kinematics.rotation_matrix(orn).T + pos
+    pos, orn = sim.robot.ground_truth()
+    world = collision_points(sim.robot.description) @ kinematics.rotation_matrix(orn).T + pos
     return [tuple(p[:2]) for p in world]
 
 
@@ -75,11 +75,11 @@ def run(sim, seconds):
 
 
 def rpy(sim):
-    return pybullet.getEulerFromQuaternion(sim.ground_truth()[1])
+    return pybullet.getEulerFromQuaternion(sim.robot.ground_truth()[1])
 
 
 def heading(sim):
-    return kinematics.yaw_from_quat(sim.ground_truth()[1])
+    return kinematics.yaw_from_quat(sim.robot.ground_truth()[1])
 
 
 @pytest.fixture
@@ -178,7 +178,7 @@ def test_unknown_names_list_the_valid_ones(field, value, valid):
 
 def test_rests_on_its_wheels_at_the_spawn(resting):
     """After 1 s alone: base_footprint on the floor at the spawn pose, level, still."""
-    (x, y, z), _ = resting.ground_truth()
+    (x, y, z), _ = resting.robot.ground_truth()
     assert (x, y) == pytest.approx((0.4, -0.3), abs=0.003)
     assert abs(z) < 0.003
     roll, pitch, _ = rpy(resting)
@@ -194,13 +194,13 @@ def test_total_mass_matches_the_urdf(resting):
     links = range(-1, pybullet.getNumJoints(phys.robot, physicsClientId=phys.client))
     total = sum(pybullet.getDynamicsInfo(phys.robot, link, physicsClientId=phys.client)[0]
                 for link in links)
-    assert total == pytest.approx(resting.description.mass, abs=1e-4)
+    assert total == pytest.approx(resting.robot.description.mass, abs=1e-4)
     assert total == pytest.approx(TOTAL_MASS[resting.config.model], abs=0.01)
 
 
 def test_imu_at_rest(resting):
     """At rest the IMU reads gravity (+9.8 up, as a real IMU), no rotation, the spawn yaw."""
-    imu = resting.imu()
+    imu = resting.robot.imu()
     ax, ay, az = imu.linear_acceleration
     assert az == pytest.approx(9.8, abs=0.05)
     assert math.hypot(ax, ay) < 0.3          # only the slight tilt onto the caster
@@ -216,20 +216,20 @@ def test_drives_straight(make_sim, model):
     within 0.03 rad; odom twist in the body frame; both wheels turning forward."""
     sim = make_sim(model=model, world="empty", yaw=2.0)
     run(sim, 0.5)
-    (x0, y0, _), _ = sim.ground_truth()
+    (x0, y0, _), _ = sim.robot.ground_truth()
     yaw0 = heading(sim)
-    sim.command(0.2, 0.0)
+    sim.robot.command(0.2, 0.0)
     run(sim, 5.0)
-    (x, y, _), _ = sim.ground_truth()
+    (x, y, _), _ = sim.robot.ground_truth()
     ahead = (x - x0) * math.cos(yaw0) + (y - y0) * math.sin(yaw0)
     aside = -(x - x0) * math.sin(yaw0) + (y - y0) * math.cos(yaw0)
     assert ahead == pytest.approx(1.0, rel=0.05)
     assert abs(aside) < 0.02
     assert abs(kinematics.wrap_angle(heading(sim) - yaw0)) < 0.03
-    odom = sim.odom()
+    odom = sim.robot.odom()
     assert odom.linear[0] == pytest.approx(0.2, rel=0.05)
     assert abs(odom.linear[1]) < 0.02
-    (left, right), (v_left, v_right) = sim.joint_states()
+    (left, right), (v_left, v_right) = sim.robot.joint_states()
     assert left > 25 and right > 25           # 1 m / 0.033 m = 30 rad, both positive
     assert v_left == pytest.approx(0.2 / 0.033, rel=0.05)
     assert v_right == pytest.approx(0.2 / 0.033, rel=0.05)
@@ -241,12 +241,12 @@ def test_accelerates_at_the_plugin_ramp(make_sim, model):
     0.1 m/s after 0.1 s, and 0.5*0.22*0.22 + 0.22*0.18 = 0.064 m covered after 0.4 s."""
     sim = make_sim(model=model, world="empty")
     run(sim, 0.5)
-    (x0, _, _), _ = sim.ground_truth()
-    sim.command(0.22, 0.0)
+    (x0, _, _), _ = sim.robot.ground_truth()
+    sim.robot.command(0.22, 0.0)
     run(sim, 0.1)
-    assert 0.07 < sim.odom().linear[0] < 0.13
+    assert 0.07 < sim.robot.odom().linear[0] < 0.13
     run(sim, 0.3)
-    assert sim.ground_truth()[0][0] - x0 == pytest.approx(0.064, rel=0.1)
+    assert sim.robot.ground_truth()[0][0] - x0 == pytest.approx(0.064, rel=0.1)
 
 
 @pytest.mark.parametrize("model", MODEL_NAMES)
@@ -254,14 +254,14 @@ def test_turns_in_place(make_sim, model):
     """0.5 rad/s for 4 s: about 2 rad (5 %), base_footprint moves < 2 cm."""
     sim = make_sim(model=model, world="empty")
     run(sim, 0.5)
-    (x0, y0, _), _ = sim.ground_truth()
+    (x0, y0, _), _ = sim.robot.ground_truth()
     yaw0 = heading(sim)
-    sim.command(0.0, 0.5)
+    sim.robot.command(0.0, 0.5)
     run(sim, 4.0)
-    (x, y, _), _ = sim.ground_truth()
+    (x, y, _), _ = sim.robot.ground_truth()
     assert kinematics.wrap_angle(heading(sim) - yaw0) == pytest.approx(2.0, rel=0.05)
     assert math.hypot(x - x0, y - y0) < 0.02
-    assert sim.odom().angular[2] == pytest.approx(0.5, rel=0.05)
+    assert sim.robot.odom().angular[2] == pytest.approx(0.5, rel=0.05)
 
 
 @pytest.mark.parametrize("model", MODEL_NAMES)
@@ -269,26 +269,26 @@ def test_commands_are_clamped_to_the_model_limits(make_sim, model):
     """By default 1 m/s and 10 rad/s become the model's top speeds (0.22 / 0.26 m/s ...)."""
     spec = MODELS[model]
     sim = make_sim(model=model, world="empty")
-    problems = sim.command(1.0, 0.0)
+    problems = sim.robot.command(1.0, 0.0)
     assert len(problems) == 1 and "linear.x" in problems[0]
     run(sim, 2.0)
-    assert sim.odom().linear[0] == pytest.approx(spec.max_linear, rel=0.05)
-    problems = sim.command(0.0, -10.0)
+    assert sim.robot.odom().linear[0] == pytest.approx(spec.max_linear, rel=0.05)
+    problems = sim.robot.command(0.0, -10.0)
     assert len(problems) == 1 and "angular.z" in problems[0]
     run(sim, 2.0)
-    assert sim.odom().angular[2] == pytest.approx(-spec.max_angular, rel=0.05)
+    assert sim.robot.odom().angular[2] == pytest.approx(-spec.max_angular, rel=0.05)
 
 
 def test_no_clamp_when_switched_off(make_sim):
     """clamp_cmd_vel False: 0.5 m/s is driven as it is; 5 m/s is held to SAFE_LINEAR."""
     sim = make_sim(model="burger", world="empty", clamp_cmd_vel=False)
-    assert sim.command(0.5, 0.0) == []
+    assert sim.robot.command(0.5, 0.0) == []
     run(sim, 2.0)
-    assert sim.odom().linear[0] == pytest.approx(0.5, rel=0.05)
-    problems = sim.command(5.0, 0.0)
+    assert sim.robot.odom().linear[0] == pytest.approx(0.5, rel=0.05)
+    problems = sim.robot.command(5.0, 0.0)
     assert len(problems) == 1 and "linear.x" in problems[0]
     run(sim, 3.0)
-    speed = sim.odom().linear[0]
+    speed = sim.robot.odom().linear[0]
     assert 1.5 < speed <= SAFE_LINEAR * 1.05
     roll, pitch, _ = rpy(sim)
     assert abs(roll) < 0.2 and abs(pitch) < 0.2
@@ -298,14 +298,14 @@ def test_no_clamp_when_switched_off(make_sim):
 def test_nan_command_raises_and_is_ignored(make_sim, bad):
     """NaN/inf: ValueError, and the previous command stays in effect."""
     sim = make_sim(model="burger", world="empty")
-    sim.command(0.1, 0.0)
+    sim.robot.command(0.1, 0.0)
     run(sim, 0.5)
     with pytest.raises(ValueError):
-        sim.command(*bad)
-    (x0, _, _), _ = sim.ground_truth()
+        sim.robot.command(*bad)
+    (x0, _, _), _ = sim.robot.ground_truth()
     run(sim, 1.0)
-    assert sim.ground_truth()[0][0] - x0 == pytest.approx(0.1, rel=0.05)
-    assert all(math.isfinite(v) for v in sim.ground_truth()[0])
+    assert sim.robot.ground_truth()[0][0] - x0 == pytest.approx(0.1, rel=0.05)
+    assert all(math.isfinite(v) for v in sim.robot.ground_truth()[0])
 
 
 # --- walls -------------------------------------------------------------------------------------
@@ -313,7 +313,7 @@ def test_nan_command_raises_and_is_ignored(make_sim, bad):
 def assert_inside_arena(sim, upright=True):
     """No part of the robot beyond any inner wall of the hexagon (CONTACT_SLOP allowed); with
     ``upright``, also level on the floor."""
-    (x, y, z), _ = sim.ground_truth()
+    (x, y, z), _ = sim.robot.ground_truth()
     assert math.hypot(x, y) < ARENA_CIRCUMRADIUS
     points = world_outline(sim)
     for normal in WALL_NORMALS:
@@ -345,10 +345,10 @@ def test_collision_outline_matches_reference(collision_hulls, model, front, rear
 def test_stopped_by_the_wall_behind_the_spawn(make_sim, model):
     """Facing -x at full speed for 10 s: ends touching the west-south-west wall, not beyond."""
     sim = make_sim(model=model, world="turtlebot3_world", yaw=math.pi)
-    sim.command(1.0, 0.0)                     # clamped to the model's top speed
+    sim.robot.command(1.0, 0.0)                     # clamped to the model's top speed
     run(sim, 10.0)
     assert_inside_arena(sim)
-    (x, _, _), _ = sim.ground_truth()
+    (x, _, _), _ = sim.robot.ground_truth()
     front = 0.038 if model == "burger" else 0.069
     assert x > -2.644 + front - CONTACT_SLOP
     wall = WALL_NORMALS[3]                    # the flat facing 210 degrees
@@ -361,12 +361,12 @@ def test_never_through_the_corner(make_sim, model):
     corner = (-ARENA_CIRCUMRADIUS, 0.0)
     yaw = math.atan2(corner[1] - TB3_SPAWN[1], corner[0] - TB3_SPAWN[0])
     sim = make_sim(model=model, world="turtlebot3_world", yaw=yaw)
-    sim.command(1.0, 0.0)                     # clamped to the model's top speed
+    sim.robot.command(1.0, 0.0)                     # clamped to the model's top speed
     farthest = 0.0
     for _ in range(400):
         run(sim, 0.05)
         assert_inside_arena(sim)
-        farthest = max(farthest, math.hypot(*sim.ground_truth()[0][:2]))
+        farthest = max(farthest, math.hypot(*sim.robot.ground_truth()[0][:2]))
     assert farthest > ARENA_APOTHEM + 0.2     # it did get into the corner
 
 
@@ -377,11 +377,11 @@ def test_never_through_the_corner_at_safe_linear(make_sim, model):
     corner = (-ARENA_CIRCUMRADIUS, 0.0)
     yaw = math.atan2(corner[1] - TB3_SPAWN[1], corner[0] - TB3_SPAWN[0])
     sim = make_sim(model=model, world="turtlebot3_world", yaw=yaw, clamp_cmd_vel=False)
-    sim.command(SAFE_LINEAR, 0.0)
+    sim.robot.command(SAFE_LINEAR, 0.0)
     for _ in range(400):
         run(sim, 0.05)
         assert_inside_arena(sim, upright=False)
-        assert all(math.isfinite(v) for v in sim.ground_truth()[0])
+        assert all(math.isfinite(v) for v in sim.robot.ground_truth()[0])
 
 
 # --- the laser ---------------------------------------------------------------------------------
@@ -394,7 +394,7 @@ def spawn_scans():
         sim = Simulation(SimConfig(model="burger", world="turtlebot3_world", lidar_model=lidar))
         try:
             run(sim, 0.2)
-            scans.append(sim.scan())
+            scans.append(sim.robot.scan())
         finally:
             sim.close()
     return tuple(scans)
@@ -447,28 +447,28 @@ def test_no_return_is_inf_in_gazebo_mode_and_zero_in_lds01(spawn_scans):
 def test_world_odom_starts_at_the_spawn(make_sim):
     """odom_source world (Gazebo's): the odom pose is the world pose, from the spawn."""
     sim = make_sim(model="burger", world="turtlebot3_world", yaw=0.3)
-    odom = sim.odom()
+    odom = sim.robot.odom()
     assert odom.position[:2] == pytest.approx(TB3_SPAWN, abs=1e-6)
     assert kinematics.yaw_from_quat(odom.orientation) == pytest.approx(0.3, abs=1e-6)
     run(sim, 0.5)
-    odom = sim.odom()
+    odom = sim.robot.odom()
     assert odom.position[:2] == pytest.approx(TB3_SPAWN, abs=0.003)
-    assert odom.position == pytest.approx(sim.ground_truth()[0])
+    assert odom.position == pytest.approx(sim.robot.ground_truth()[0])
 
 
 def test_encoder_odom_starts_at_zero_and_measures_the_drive(make_sim):
     """odom_source encoders: (0, 0, 0) at the spawn; after driving 1 m it reads about 1 m."""
     sim = make_sim(model="burger", world="turtlebot3_world", odom_source="encoders")
-    odom = sim.odom()
+    odom = sim.robot.odom()
     assert odom.position == (0.0, 0.0, 0.0)
     assert kinematics.yaw_from_quat(odom.orientation) == 0.0
     run(sim, 0.5)
-    assert sim.odom().position[:2] == pytest.approx((0.0, 0.0), abs=0.003)
-    (x0, y0, _), _ = sim.ground_truth()
-    sim.command(0.2, 0.0)
+    assert sim.robot.odom().position[:2] == pytest.approx((0.0, 0.0), abs=0.003)
+    (x0, y0, _), _ = sim.robot.ground_truth()
+    sim.robot.command(0.2, 0.0)
     run(sim, 5.0)
-    (x1, y1, _), _ = sim.ground_truth()
-    odom = sim.odom()
+    (x1, y1, _), _ = sim.robot.ground_truth()
+    odom = sim.robot.odom()
     travelled = math.hypot(x1 - x0, y1 - y0)
     assert odom.position[0] == pytest.approx(1.0, rel=0.05)
     assert odom.position[0] == pytest.approx(travelled, rel=0.05)
@@ -482,12 +482,12 @@ def test_encoder_odom_starts_at_zero_and_measures_the_drive(make_sim):
 def test_imu_while_turning(make_sim):
     """Turning at 0.5 rad/s, the IMU's angular_velocity z reads about 0.5 rad/s."""
     sim = make_sim(model="burger", world="empty")
-    sim.command(0.0, 0.5)
+    sim.robot.command(0.0, 0.5)
     run(sim, 1.0)
     readings = []
     for _ in range(400):
         if (sim.robot, "imu") in sim.step():
-            readings.append(sim.imu().angular_velocity[2])
+            readings.append(sim.robot.imu().angular_velocity[2])
     assert len(readings) == 200
     assert np.mean(readings) == pytest.approx(0.5, abs=0.05)
     assert min(readings) > 0.3
@@ -499,29 +499,29 @@ def test_imu_while_turning(make_sim):
 def test_reset_world(make_sim, odom_source):
     """reset_world: robot back at the spawn, stopped, odom as at the start; time runs on."""
     sim = make_sim(model="burger", world="turtlebot3_world", odom_source=odom_source)
-    start_odom = sim.odom().position
-    sim.command(0.2, 0.5)
+    start_odom = sim.robot.odom().position
+    sim.robot.command(0.2, 0.5)
     run(sim, 2.0)
-    assert math.dist(sim.ground_truth()[0][:2], TB3_SPAWN) > 0.2
+    assert math.dist(sim.robot.ground_truth()[0][:2], TB3_SPAWN) > 0.2
     before = sim.time_ns
     sim.reset_world()
     assert sim.time_ns == before
-    assert sim.ground_truth()[0][:2] == pytest.approx(TB3_SPAWN, abs=1e-6)
+    assert sim.robot.ground_truth()[0][:2] == pytest.approx(TB3_SPAWN, abs=1e-6)
     assert heading(sim) == pytest.approx(0.0, abs=1e-6)
-    assert sim.odom().position[:2] == pytest.approx(start_odom[:2], abs=1e-6)
+    assert sim.robot.odom().position[:2] == pytest.approx(start_odom[:2], abs=1e-6)
     run(sim, 1.0)                             # the old command is gone, time goes on
     assert sim.time_ns == before + 1_000_000_000
-    assert sim.ground_truth()[0][:2] == pytest.approx(TB3_SPAWN, abs=0.005)
+    assert sim.robot.ground_truth()[0][:2] == pytest.approx(TB3_SPAWN, abs=0.005)
 
 
 def test_reset_simulation(make_sim):
     """reset_simulation: time back to 0, robot at the spawn, every output due again."""
     sim = make_sim(model="burger", world="turtlebot3_world")
-    sim.command(0.2, 0.0)
+    sim.robot.command(0.2, 0.0)
     run(sim, 2.0)
     sim.reset_simulation()
     assert sim.time_ns == 0 and sim.time == 0.0
-    assert sim.ground_truth()[0][:2] == pytest.approx(TB3_SPAWN, abs=1e-6)
+    assert sim.robot.ground_truth()[0][:2] == pytest.approx(TB3_SPAWN, abs=1e-6)
     assert [name for _, name in sim.step()] == ["clock", "odom", "joint_states", "scan", "imu"]
     assert sim.time_ns == sim.step_ns
 

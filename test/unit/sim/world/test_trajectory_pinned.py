@@ -16,8 +16,8 @@ Two checks, because a pybullet built by another compiler is not bit-identical:
   and Debian 13's build). A command changed by 1 mm/s moves the robot by about 1 mm.
 
 If a change to the physics is meant, take the new digest and reference from the failure
-message (``python3 test/unit/sim/world/test_trajectory_pinned.py --write`` rewrites the reference) and
-say why in the commit.
+message (``python3 test/unit/sim/world/test_trajectory_pinned.py --write`` rewrites the
+reference) and say why in the commit.
 """
 import hashlib
 import json
@@ -97,7 +97,7 @@ def drive(ray_threads=1):
     try:
         for step in range(len(COMMANDS) * STEPS_PER_COMMAND):
             if step % STEPS_PER_COMMAND == 0:
-                sim.command(*COMMANDS[step // STEPS_PER_COMMAND])
+                sim.robot.command(*COMMANDS[step // STEPS_PER_COMMAND])
             for robot, name in sim.step():
                 if robot is None:
                     continue

@@ -7,7 +7,6 @@ import pytest
 
 from tutorial_turtlebot.package_data import data_dir
 from tutorial_turtlebot.sim.world.world_control import RequestError
-from tutorial_turtlebot.sim.files.world_lights import read_lights
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, read_urdf_text
 
 from unit_helpers import CUBE, ROBOT, WHEEL, at, box_sdf, run
@@ -136,7 +135,7 @@ def test_joint_properties(empty):
     assert len(j.damping) == len(j.position) == len(j.rate) == 1
     assert abs(j.position[0]) < 0.05 and abs(j.rate[0]) < 0.1
     assert wc.get_joint_properties(ROBOT + "::wheel_right_joint").kind == "revolute"
-    sim.command(0.1, 0.0)
+    sim.robot.command(0.1, 0.0)
     run(sim, 1.0)          # 0.1 m/s on 0.033 m wheels: 3 rad/s
     assert wc.get_joint_properties("wheel_left_joint").rate[0] == pytest.approx(3.03, rel=0.05)
     with pytest.raises(RequestError, match="^GetJointProperties: joint not found$"):
@@ -237,27 +236,6 @@ def test_lights_get_and_set(empty):
         wc.set_light("sun", False, (float("nan"), 1, 1, 1), (1, 1, 1, 1), (1, 0, 0),
                      (0, 0, -1), ((0, 0, 0), (0, 0, 0, 1)))
     assert wc.get_light("sun").diffuse == (0.1, 0.2, 0.3, 1.0)
-
-
-def test_lights_of_an_included_sun(tmp_path, monkeypatch):
-    sun = tmp_path / "models" / "sun"
-    sun.mkdir(parents=True)
-    (sun / "model.config").write_text(
-        '<?xml version="1.0"?><model><name>Sun</name><sdf version="1.6">model.sdf</sdf></model>')
-    (sun / "model.sdf").write_text(
-        '<sdf version="1.6"><light type="directional" name="sun"><diffuse>0.8 0.8 0.8 1'
-        '</diffuse><attenuation><constant>0.9</constant></attenuation></light></sdf>')
-    world = tmp_path / "w.world"
-    world.write_text('<sdf version="1.6"><world name="default"><include><uri>model://sun</uri>'
-                     '</include><light type="point" name="lamp"><pose>1 2 3 0 0 0</pose>'
-                     '</light></world></sdf>')
-    monkeypatch.setenv("GAZEBO_MODEL_PATH", str(tmp_path / "models"))
-    lights = read_lights(str(world))
-    assert list(lights) == ["sun", "lamp"]
-    assert lights["sun"].kind == "directional" and lights["sun"].attenuation_constant == 0.9
-    assert lights["sun"].attenuation_linear == 1.0          # SDF's default
-    assert lights["lamp"].pose[0] == (1.0, 2.0, 3.0)
-    assert read_lights(str(tmp_path / "missing.world")) == {}
 
 
 # --- deleted models' bodies: parked for reuse, a bounded number of them ----------------------------

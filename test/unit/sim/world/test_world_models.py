@@ -60,7 +60,7 @@ def test_the_robot_pushes_a_light_box(empty):
     wc.spawn("box", box_sdf(), at(0.4, 0.0, 0.075))
     run(sim, 0.5)
     start = wc.get_model_state("box")[0][0]
-    sim.command(0.2, 0.0)
+    sim.robot.command(0.2, 0.0)
     run(sim, 4.0)
     end = wc.get_model_state("box")[0][0]
     robot = wc.get_model_state("turtlebot3_burger")[0][0]
@@ -162,9 +162,9 @@ def test_physics_properties_change_the_step(empty):
 def test_lidar_samples():
     sim = Simulation(SimConfig(world="turtlebot3_stage_1", lidar_samples=24))
     try:
-        ranges = sim.scan()
+        ranges = sim.robot.scan()
         assert len(ranges) == 24
-        assert sim.laser.angle_increment == pytest.approx(6.28319 / 23)
+        assert sim.robot.laser.angle_increment == pytest.approx(6.28319 / 23)
         # the square's inner faces are 1.925 m away ahead, left, behind (index 6 = 1.64 rad)
         assert ranges[0] == pytest.approx(1.925, abs=0.05)
     finally:

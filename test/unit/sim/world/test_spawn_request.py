@@ -1,11 +1,11 @@
-"""Spawn requests: SDF and URDF model_xml, name rules, refusals (sim/spawn_request). No ROS."""
+"""Spawn requests: SDF and URDF model_xml, name rules, refusals (sim/world/spawn_request). No ROS."""
 import math
 
 import pytest
 
 from tutorial_turtlebot.sim.world import reference_frames as rf
 from tutorial_turtlebot.package_data import data_dir
-from tutorial_turtlebot.sim.files.spawn_request import MAX_XML_BYTES, parse_spawn, placed
+from tutorial_turtlebot.sim.world.spawn_request import MAX_XML_BYTES, parse_spawn, placed
 from tutorial_turtlebot.sim.world.world_models import RequestError, check_model_name
 
 from unit_helpers import at
@@ -123,7 +123,7 @@ def test_placed_in_a_frame_and_refusing_nan():
 
 # --- what one spawn may cost the loop (prepare_spawn) -----------------------------------------------
 
-from tutorial_turtlebot.sim.files import spawn_request  # noqa: E402
+from tutorial_turtlebot.sim.world import spawn_request  # noqa: E402
 
 
 def polyline_sdf(points):

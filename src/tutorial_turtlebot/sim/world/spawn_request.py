@@ -1,13 +1,14 @@
 """A spawn request's model_xml, checked and turned into what the world builder builds. No ROS.
 
 Three kinds, as Gazebo's spawn services take them:
-- SDF: ``<sdf>`` (or ``<gazebo>``) holding one ``<model>`` of primitive shapes (world_sdf's
-  subset): it becomes a ``World`` of that one model, renamed and placed;
+- SDF: ``<sdf>`` (or ``<gazebo>``) holding one ``<model>`` as world_sdf reads a world's (boxes,
+  cylinders, spheres, planes, polylines, meshes, includes): it becomes a ``World`` of that one
+  model, renamed and placed;
 - URDF: ``<robot>`` of links and joints, read and checked by urdf_file as a robot's is (one
   ``RobotDescription``, ``description``), with box, cylinder, sphere or mesh geometry and no
   robot plugins: ``urdf`` is its text with the requested name and each mesh filename made the
   absolute path of its file (``package://``, ``file://``, or a path; a relative one from the
-  working directory), which pybullet loads (meshes through urdf_meshes);
+  working directory), which engine.urdf_loader loads (meshes through urdf_meshes);
 - a robot: a URDF whose ``<gazebo>`` blocks hold plugins: ``robot`` is its text as given, and
   the simulation builds it from ``description`` with its plugins (``Simulation.add_robot``).
 The text is parsed once (xml_reader) and checked once; everything downstream uses what that
@@ -29,20 +30,18 @@ from dataclasses import dataclass
 from typing import Optional
 from xml.etree import ElementTree
 
-from ...errors import UserError
-from ..world import reference_frames as rf
-from . import limits
-from . import xml_reader
+from . import reference_frames as rf
+from ..files import limits
+from ..files import xml_reader
 from ..kinematics import xyz_rpy_from_pose
-from .urdf_file import RobotDescription, read_urdf_element
-from .urdf_meshes import absolute_meshes, mesh_paths
+from ..files.urdf_file import RobotDescription, read_urdf_element
+from ..files.urdf_meshes import absolute_meshes, mesh_paths
 from ..engine.world_bullet import MOVABLE_KINDS
-from ..world.world_models import RequestError
-from .world_sdf import World, load_model_xml
-from .xml_reader import Element
+from .world_models import RequestError, spawn_failure, spawn_refusal
+from ..files.world_sdf import World, load_model_xml
+from ..files.xml_reader import Element
 
 MAX_XML_BYTES = 1_000_000
-PREFIX = "SpawnModel: Failure - "
 # What one spawn may cost the loop (it builds the bodies between two steps, while physics,
 # /clock and every other request wait): refused before anything is built.
 MAX_SPAWN_SHAPES = 1000         # collisions and visuals, a polyline's triangles and a mesh's
@@ -80,10 +79,10 @@ class SpawnRequest:
 
 def _check_size(xml: str) -> None:
     if len(xml) > MAX_XML_BYTES:
-        raise RequestError(PREFIX + "model_xml is %d characters, more than the %d allowed"
-                           % (len(xml), MAX_XML_BYTES))
+        raise spawn_failure("model_xml is %d characters, more than the %d allowed"
+                            % (len(xml), MAX_XML_BYTES))
     if not xml.strip():
-        raise RequestError(PREFIX + "model_xml is empty")
+        raise spawn_failure("model_xml is empty")
 
 
 def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf") -> SpawnRequest:
@@ -98,27 +97,23 @@ def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "s
 
 def _parse(name: str, xml: str, pose: rf.Pose, kind: str) -> SpawnRequest:
     _check_size(xml)
-    try:
+    with spawn_refusal():
         root = xml_reader.parse(xml, "model_xml")
         if root.tag == "robot":
             return _urdf_request(name, xml, root)
-    except UserError as err:
-        raise RequestError(PREFIX + str(err)) from None
     if kind == "urdf":
-        raise RequestError(PREFIX + "spawn_urdf_model needs a <robot> root element, got <%s>"
-                           % root.tag)
+        raise spawn_failure("spawn_urdf_model needs a <robot> root element, got <%s>"
+                            % root.tag)
     if root.tag not in ("sdf", "gazebo"):
-        raise RequestError(PREFIX + "model_xml: the root element is <%s>: expected <sdf> or "
-                                    "<robot>" % root.tag)
-    try:
+        raise spawn_failure("model_xml: the root element is <%s>: expected <sdf> or "
+                            "<robot>" % root.tag)
+    with spawn_refusal():
         world = load_model_xml(root, "model_xml", name, xyz_rpy_from_pose(pose),
                                max_shapes=MAX_SPAWN_SHAPES)
-    except UserError as err:
-        raise RequestError(PREFIX + str(err)) from None
     for shape in world.shapes:
         if not shape.static and shape.kind not in MOVABLE_KINDS:
-            raise RequestError(PREFIX + "%s: a %s cannot be part of a model that is not "
-                                        "<static>" % (shape.name, shape.kind))
+            raise spawn_failure("%s: a %s cannot be part of a model that is not "
+                                "<static>" % (shape.name, shape.kind))
     return SpawnRequest(name, world=world)
 
 
@@ -142,17 +137,17 @@ def prepare_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = 
 
 def _check_time(deadline: float, seconds: float) -> None:
     if time.monotonic() > deadline:
-        raise RequestError(PREFIX + "reading model_xml and its files took more than %g s; "
-                                    "nothing was spawned" % seconds)
+        raise spawn_failure("reading model_xml and its files took more than %g s; "
+                            "nothing was spawned" % seconds)
 
 
 def _over(what: str, count: int, limit: int) -> RequestError:
-    return RequestError(PREFIX + "%s: %d, more than the %d one spawn may build; nothing was "
-                                 "spawned" % (what, count, limit))
+    return spawn_failure("%s: %d, more than the %d one spawn may build; nothing was "
+                         "spawned" % (what, count, limit))
 
 
 def _prepare_world(world: World, deadline: float, seconds: float) -> None:
-    from .mesh_file import load_mesh      # trimesh and pycollada only for meshes
+    from ..files.mesh_file import load_mesh      # trimesh and pycollada only for meshes
     pieces = triangles = 0
     for shape in world.shapes:
         pieces += 1
@@ -162,10 +157,8 @@ def _prepare_world(world: World, deadline: float, seconds: float) -> None:
                             MAX_POLYLINE_POINTS)
             pieces += max(0, len(shape.points) - 3)
         elif shape.kind == "mesh":
-            try:
+            with spawn_refusal():
                 mesh = load_mesh(shape.mesh, shape.size)
-            except UserError as err:
-                raise RequestError(PREFIX + str(err)) from None
             triangles += sum(len(part.faces) for part in mesh.parts)
             pieces += len(mesh.parts) - 1
             if not shape.static and len(mesh.vertices) > MAX_MOVABLE_MESH_VERTICES:
@@ -180,13 +173,13 @@ def _prepare_world(world: World, deadline: float, seconds: float) -> None:
 
 
 def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> None:
-    from .urdf_meshes import bullet_urdf_text, mesh_triangles
+    from ..files.urdf_meshes import bullet_urdf_text, mesh_triangles
     description = request.description
     shapes = sum(len(link.visuals) + len(link.collisions)
                  for link in description.links.values())
     if shapes > MAX_SPAWN_SHAPES:
         raise _over("shapes (links' collisions and visuals)", shapes, MAX_SPAWN_SHAPES)
-    try:
+    with spawn_refusal():
         triangles, hull_vertices = mesh_triangles(description)
         if triangles > MAX_SPAWN_TRIANGLES:
             raise _over("mesh triangles", triangles, MAX_SPAWN_TRIANGLES)
@@ -197,8 +190,6 @@ def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> Non
         # the conversions pybullet's copy needs, done now: building it later finds them made
         bullet_urdf_text(absolute_meshes(description.root, mesh_paths(description)),
                          os.getcwd())
-    except UserError as err:
-        raise RequestError(PREFIX + str(err)) from None
     _check_time(deadline, seconds)
 
 

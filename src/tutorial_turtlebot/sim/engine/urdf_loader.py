@@ -1,0 +1,64 @@
+"""The one way a URDF becomes a pybullet body: robots, spawned URDFs and their meshes alike.
+
+The text is what ``files.urdf_meshes.bullet_urdf_text`` writes (meshes as Wavefront files,
+bare frames next to massless, one element a line); it is loaded with ``URDF_FLAGS``:
+- fixed joints merged, as Gazebo lumps fixed links into their parent;
+- the inertia as the file gives it (pybullet would otherwise compute one from the collision
+  shapes);
+- cylinders as true cylinders (Gazebo's ODE collides with cylinders, not with their hulls).
+"""
+import os
+import tempfile
+
+from ...errors import UserError
+from ..files.urdf_meshes import textured_urdf
+from .bodies import Body
+from .bullet import pybullet, quiet_output
+from .world_bullet import MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK
+from .rendering import note_textures
+
+URDF_FLAGS = (pybullet.URDF_MERGE_FIXED_LINKS | pybullet.URDF_USE_INERTIA_FROM_FILE
+              | pybullet.URDF_USE_IMPLICIT_CYLINDER)
+
+
+def load_urdf(client: int, urdf: str) -> int:
+    """A new body of URDF text ``urdf`` in pybullet client ``client`` (its root link at the
+    origin): the body id. UserError (one line) when pybullet cannot load it. A URDF with a
+    textured mesh makes the client's cameras draw textures from then on."""
+    if textured_urdf(urdf):
+        note_textures(client)
+    fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(urdf)
+        try:
+            with quiet_output():   # the importer's notes go straight to the terminal
+                return pybullet.loadURDF(path, flags=URDF_FLAGS, physicsClientId=client)
+        except pybullet.error as err:
+            raise UserError("pybullet could not load the URDF: %s" % err) from None
+    finally:
+        os.unlink(path)
+
+
+def load_movable(client: int, urdf: str) -> Body:
+    """``load_urdf`` of a spawned model without robot plugins, set up as Gazebo moves one: it
+    collides with the world, the robots and other movable models, slides with friction 1, has
+    no damping, never sleeps, and its joints turn freely (pybullet's default motors would
+    brake them)."""
+    body = load_urdf(client, urdf)
+    setup_movable(client, body)
+    return Body(client, body)
+
+
+def setup_movable(client: int, body: int) -> None:
+    """The set-up of ``load_movable``, of a body already loaded (or taken from the pool)."""
+    for link in range(-1, pybullet.getNumJoints(body, physicsClientId=client)):
+        pybullet.setCollisionFilterGroupMask(body, link, MOVABLE_COLLISION_GROUP,
+                                             MOVABLE_COLLISION_MASK, physicsClientId=client)
+        pybullet.changeDynamics(body, link, lateralFriction=1.0,
+                                linearDamping=0.0, angularDamping=0.0,  # none in Gazebo
+                                activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
+                                physicsClientId=client)
+        if link >= 0:
+            pybullet.setJointMotorControl2(body, link, pybullet.VELOCITY_CONTROL, force=0.0,
+                                           physicsClientId=client)
