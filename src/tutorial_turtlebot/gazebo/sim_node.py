@@ -62,6 +62,7 @@ from .impl.master_watch import MasterWatch
 from .world_api import WorldApi
 from ..errors import UserError, one_line
 from ..node_output import line_buffered
+from ..node_params import checked_number, converted
 from ..sim.kinematics import yaw_from_quat
 from .impl.nonblocking_publisher import make_nonblocking
 from .impl.packed_messages import PackedClock
@@ -102,26 +103,7 @@ def _param(name, default, kind, allow_empty=False):
     value = _private_params.get(name, default)
     if allow_empty and (value is None or (isinstance(value, str) and value.strip() == "")):
         return None
-    try:
-        return _converted(value, kind)
-    except (TypeError, ValueError):
-        raise UserError("parameter ~%s: %r is not a %s" % (name, value, kind.__name__)) from None
-
-
-def _converted(value, kind):
-    """``value`` as a ``kind``: a bool only from a bool or "true"/"false" (any case), a float
-    not from a bool, an int only from a whole number; TypeError or ValueError if it is not."""
-    if kind is bool:
-        if isinstance(value, str) and value.lower() in ("true", "false"):
-            return value.lower() == "true"
-        if isinstance(value, bool):
-            return value
-        raise ValueError
-    if kind is float and isinstance(value, bool):
-        raise ValueError
-    if kind is int and not float(value).is_integer():
-        raise ValueError
-    return kind(value)
+    return converted("~" + name, value, kind)
 
 
 def read_config() -> SimConfig:
@@ -464,10 +446,9 @@ def _node_params():
         raise UserError("parameter ~%s" % err) from None
     paused = _param("paused", False, bool)
     status_period = _param("status_period", 10.0, float)
-    pub_clock_frequency = _param("pub_clock_frequency", 1000.0, float)
-    if not (pub_clock_frequency >= 0 and math.isfinite(pub_clock_frequency)):
-        raise UserError("parameter ~pub_clock_frequency: %r is not a frequency of 0 (no "
-                        "limit) or more Hz" % pub_clock_frequency)
+    pub_clock_frequency = checked_number(
+        "~pub_clock_frequency", _param("pub_clock_frequency", 1000.0, float), "Hz, 0 = no limit",
+        at_least=0.0)
     if config.gui and not os.environ.get("DISPLAY"):
         rospy.logwarn("gazebo: gui:=true but there is no display (DISPLAY is unset): "
                       "running headless")

@@ -1,5 +1,4 @@
 """ROS glue shared by the lab nodes: checked parameters, the robot model, safe cmd_vel."""
-import math
 import os
 import signal
 import sys
@@ -7,12 +6,14 @@ import threading
 import time
 from typing import Optional
 
-import rosgraph.names
 import rospy
 from geometry_msgs.msg import Twist
 from sensor_msgs.msg import LaserScan
 
+from ..errors import UserError
+from ..node_params import checked_number
 from ..robot_models import MODEL_NAMES
+from ..ros_names import is_legal_name
 from ..node_output import line_buffered
 
 # Wall-clock seconds the zero Twist is given to leave on shutdown (sim time may have stopped).
@@ -35,22 +36,10 @@ def number_param(name: str, default: float, unit: str, above: Optional[float] = 
     or a fatal error unless it is a finite number with ``value > above``, ``value >= at_least``
     and ``value <= at_most`` (where given)."""
     value = rospy.get_param(name, default) if given is None else given
-    bounds = []
-    if above is not None:
-        bounds.append("> %g" % above)
-    if at_least is not None:
-        bounds.append(">= %g" % at_least)
-    if at_most is not None:
-        bounds.append("<= %g" % at_most)
-    good = (isinstance(value, (int, float)) and not isinstance(value, bool)
-            and math.isfinite(value)
-            and (above is None or value > above)
-            and (at_least is None or value >= at_least)
-            and (at_most is None or value <= at_most))
-    if not good:
-        fatal("parameter %s must be a number %s (%s), got %r"
-              % (rospy.resolve_name(name), " and ".join(bounds), unit, value))
-    return float(value)
+    try:
+        return checked_number(rospy.resolve_name(name), value, unit, above, at_least, at_most)
+    except UserError as err:
+        fatal(str(err))
 
 
 def init_node(name: str, **kwargs) -> None:
@@ -59,7 +48,7 @@ def init_node(name: str, **kwargs) -> None:
     if it is not a legal ROS name, which the master would refuse for every topic while the node
     waited forever."""
     namespace = rospy.get_namespace()
-    if not rosgraph.names.is_legal_name(namespace):
+    if not is_legal_name(namespace):
         sys.stderr.write("%s: namespace %r is not a legal ROS name: use letters, digits, _ and /, "
                          "starting with a letter (e.g. tb3_1)\n" % (name, namespace))
         sys.exit(2)

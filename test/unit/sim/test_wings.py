@@ -10,7 +10,7 @@ import unit_paths
 
 PACKAGE = os.path.join(unit_paths.ROOT, "src", "tutorial_turtlebot")
 # what each part of the package may import of the package (besides itself and the top level:
-# errors, robot_models, package_data, node_output)
+# errors, robot_models, package_data, ros_names, node_params, node_output)
 MAY_IMPORT = {
     "sim.kinematics": set(),
     "sim.files": {"sim.kinematics"},
@@ -94,7 +94,7 @@ def test_each_part_imports_only_what_lies_below_it(module):
         inner = name[len("tutorial_turtlebot."):]
         target = part_of(inner)
         if target is None:
-            continue   # the top level: errors, robot_models, package_data, node_output
+            continue   # the top level
         if target not in allowed and not any(target.startswith(a + ".") for a in allowed):
             wrong.add(inner)
     assert not wrong, "%s (%s) imports %s" % (module, own, sorted(wrong))

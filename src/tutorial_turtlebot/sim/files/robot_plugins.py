@@ -19,11 +19,11 @@ poses), every name and topic to ``limits.MAX_NAME`` characters, topics to ROS's 
 """
 import math
 import os
-import re
 from dataclasses import dataclass
 from typing import Collection, Dict, List, Mapping, NamedTuple, Optional, Tuple
 
 from ...errors import UrdfError
+from ...ros_names import is_legal_name
 from . import limits
 from ..kinematics import ZERO_XYZ_RPY, XyzRpy
 from .xml_reader import Element, XmlReader
@@ -542,7 +542,7 @@ class _PluginReader(XmlReader):
     def _topic(self, parent, tag, default: str) -> str:
         """A topic, service or namespace name: a ROS name (letters, digits, _ and /)."""
         name = self._string(parent, tag, default)
-        if not _ROS_NAME.match(name) or "//" in name:
+        if not is_legal_name(name):
             self.fail(parent.find(tag), "%r is not a ROS name (a letter, / or ~ first, then "
                                         "letters, digits, _ and /)" % name, parent)
         return name
@@ -669,5 +669,3 @@ _WHEEL = _Bounds(limits.MIN_WHEEL_SIZE, limits.MAX_SIZE, "m")   # a diameter, a 
 _ACCELERATION = _Bounds(0.0, limits.MAX_ACCELERATION, "m/s^2")
 _TORQUE = _Bounds(0.0, limits.MAX_FORCE, "N m", low_open=True)
 _BASELINE = _Bounds(-limits.MAX_SIZE, limits.MAX_SIZE, "m")
-# A ROS graph resource name, as rosgraph.names.is_legal_name has it ("" is the namespace itself).
-_ROS_NAME = re.compile(r"^([~/A-Za-z][A-Za-z0-9_/]*)?$")

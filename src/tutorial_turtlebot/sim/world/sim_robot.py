@@ -6,7 +6,6 @@ odometry, joint states), the laser, the IMU and the camera, each at its own rate
 names, unprefixed (the ROS side adds the namespace prefix). Units: m, s, rad.
 """
 import math
-import re
 from dataclasses import dataclass, replace
 from typing import Dict, List, Optional, Tuple
 
@@ -16,7 +15,8 @@ from .. import kinematics
 from ..files import limits
 from ..devices.camera import CameraIntrinsics
 from ..engine.rendering import CameraRenderer, validate_spec
-from ..devices.diff_drive import SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController, sanitize_command
+from ..devices.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController,
+                                  sanitize_command)
 from ..devices.lidar import (LaserConfig, as_real_driver, laser_config, ranges_from_distances,
                              ray_directions)
 from ..kinematics import Pose
@@ -27,6 +27,7 @@ from ..files.urdf_file import RobotDescription
 from ..files.urdf_meshes import texture_warnings
 from ..devices.wheel_odometry import WheelOdometry
 from ...errors import UserError
+from ...ros_names import is_legal_namespace
 
 ODOM_SOURCES = ("world", "encoders")
 # s: low-pass time constant of the IMU's acceleration, like the MPU-9250's digital low-pass
@@ -35,9 +36,6 @@ IMU_ACCEL_TIME_CONSTANT = 0.02
 # A camera link looks along its +x (Gazebo); the image's optical frame looks along z with x
 # right and y down. Columns: the optical axes in the link frame.
 LINK_TO_OPTICAL = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
-_NAMESPACE = re.compile(r"^/?([A-Za-z][A-Za-z0-9_]*/)*([A-Za-z][A-Za-z0-9_]*)?/?$")
-
-
 def normalize_namespace(namespace: str) -> str:
     """``"tb3_0"``, ``"/tb3_0/"`` -> ``"/tb3_0/"``; ``""`` and ``"/"`` -> ``""`` (the root);
     UserError for a name ROS does not allow (graph resource names: letters, digits, _, /) or
@@ -45,7 +43,7 @@ def normalize_namespace(namespace: str) -> str:
     problem = limits.name_problem("robot_namespace", namespace)
     if problem:
         raise UserError(problem)
-    if not _NAMESPACE.match(namespace) or "//" in namespace:
+    if not is_legal_namespace(namespace):
         raise UserError("robot_namespace %r is not a legal ROS namespace (a letter, then "
                         "letters, digits and _, parts joined by /)" % (namespace,))
     parts = namespace.strip("/")
@@ -266,6 +264,11 @@ class SimRobot:
     def joint_states(self):
         """((left, right) wheel angles rad, (left, right) wheel velocities rad/s)."""
         return self.body.wheel_states()
+
+    def reseed(self, seed: int) -> None:
+        """Draw the sensors' noise (laser, IMU) anew from ``seed``: the same seed, the same
+        noise from here on."""
+        self._rng = np.random.default_rng(seed)
 
     def scan(self) -> np.ndarray:
         """The ranges of the laser as its LaserConfig publishes them (float32); the rays see

@@ -226,6 +226,24 @@ class Simulation:
         self._next_output_ns = next_ns
         return due
 
+    def advance(self, steps: int) -> None:
+        """``steps`` physics steps with each robot's drive and the world API's forces, and no
+        outputs: for a client that reads the state itself when it wants it (the learning
+        environments), at the cost of the physics alone. A step() afterwards reports what fell
+        due meanwhile once."""
+        now, step_ns = self.time_ns, self.step_ns
+        robots, forces, physics_step = self._robot_list, self.forces, self.physics.step
+        for _ in range(steps):
+            for robot in robots:
+                robot.before_step(now)
+            if forces.active:
+                forces.apply(now)
+            physics_step()
+            now += step_ns
+        self.time_ns = now
+        for robot in robots:
+            robot.time_ns = now
+
     def reset_world(self) -> None:
         """Every model (robots, the world's movable models, spawned ones) back to its spawn
         pose at rest; time runs on (Gazebo's reset_world)."""

@@ -20,7 +20,7 @@ pytestmark = pytest.mark.skipif(
 
 REGISTERED_WITHIN = 5.0   # wall s after the new master answers
 WAIT = 90.0               # wall s for the sim to come up on a loaded machine
-CALLER = "/test_master_restart"
+CALLER = "/test_master_watch"
 DESCRIPTION = "<robot name='kept'><link name='base'/></robot>"
 TOPICS = ("/odom", "/scan", "/clock", "/tf", "/imu", "/joint_states")
 SERVICES = ("/gazebo/get_world_properties", "/gazebo/reset_world", "/gazebo/spawn_urdf_model",
