@@ -37,5 +37,12 @@ rostest: setup
 bench: setup
 	@$(ROS_ENV) && python3 bench/run_bench.py
 
+# make train: not part of make test. Installs the train extra on first use (stable-baselines3,
+# a CPU build of torch, matplotlib: tools/install_extra.sh), then trains DQN on learning stage 1
+# (tools/train_stage1.py; TRAIN_ARGS="--steps 20000" etc.); CSV, plot and model in catkin_ws/train.
+.PHONY: train
+train: setup
+	@$(ROS_ENV) && bash tools/install_extra.sh train && python3 tools/train_stage1.py $(TRAIN_ARGS)
+
 clean:
 	rm -rf $(WS) .catkin_ws

@@ -6,5 +6,6 @@ setup(**generate_distutils_setup(
     packages=["tutorial_turtlebot", "tutorial_turtlebot.sim", "tutorial_turtlebot.sim.files",
               "tutorial_turtlebot.sim.engine", "tutorial_turtlebot.sim.devices",
               "tutorial_turtlebot.sim.world", "tutorial_turtlebot.gazebo",
-              "tutorial_turtlebot.gazebo.impl", "tutorial_turtlebot.lab"],
+              "tutorial_turtlebot.gazebo.impl", "tutorial_turtlebot.lab",
+              "tutorial_turtlebot.learning"],
     package_dir={"": "src"}))

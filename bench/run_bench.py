@@ -49,6 +49,19 @@ Measured (Burger in turtlebot3_world unless said):
                     alone, bench/multi_robot.py): the same two figures, and the same robots
                     stepped without ROS (physics alone; physics and every sensor computed)
 
+  learning          the learning environments without ROS (bench/learning_speed.py): stage 1
+                    with one StageEnv (seeded random actions, reset at a collision or after
+                    500 steps): env steps per wall second, and its physics bound (the same
+                    world, robot and step size in bare pybullet replaying the env's very
+                    physics: its wheel commands before the same physics steps, its resets,
+                    the obstacles' ticks, one batch of the 24 rays per env step; no
+                    Simulation, drive, observation or reward), measured in turns; the vector
+                    env (learning/vector.py) with one worker per core against one env in
+                    turns, and Gymnasium's AsyncVectorEnv (one env per core) beside it;
+                    0.005 and 0.01 s physics steps against 0.0025 s, and how far the final
+                    pose of 100 scripted env steps moves (open field; into a wall); stage 3
+                    (its moving obstacle) and its bound
+
   soak              bench/soak.py: 30 sim minutes as fast as possible with four Burgers, every
                     topic subscribed, spawns and deletes, resets, NaN and 1e9 cmd_vel, pauses:
                     sim RSS at the start and the end, growth over the last third (not in the
@@ -61,8 +74,8 @@ Measured (Burger in turtlebot3_world unless said):
                     groups: it takes about 12 minutes)
 
 ``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, jitter, fast, world,
-subscribers, camera, render, meshes, meshworld, multi, soak, hostile); the default is all of
-them but soak and hostile.
+subscribers, camera, render, meshes, meshworld, multi, learning, soak, hostile); the default is
+all of them but soak and hostile.
 """
 import argparse
 import os
@@ -100,6 +113,8 @@ TARGETS = {
     "stage": ">= 100/s",
     "meshworld_second": "<= 2",
     "meshworld_physics": "<= 1.3",
+    "learning_bound": ">= 0.85",
+    "learning_vector": ">= 1.7",
 }
 
 
@@ -671,7 +686,7 @@ def median(values):
 
 
 GROUPS = ("startup", "realtime", "jitter", "fast", "world", "subscribers", "camera", "render",
-          "meshes", "meshworld", "multi")
+          "meshes", "meshworld", "multi", "learning")
 EXTRA_GROUPS = ("soak", "hostile")   # long: run only when named in --only
 
 
@@ -821,6 +836,8 @@ def main():
         mesh_world_rows(args.runs, row)
     if "multi" in only:
         multi_rows(args.runs, row)
+    if "learning" in only:
+        learning_rows(args.runs, row)
     if "soak" in only:   # one run: it is long
         first, last, growth = measure_soak()
         row("soak, 30 sim min with churn: sim RSS at the start / at the end", "%.0f / %.0f"
@@ -977,6 +994,47 @@ def multi_rows(runs, row):
         row("  the same: sim CPU time per sim second (as fast as possible)",
             "%.0f" % median([10 * r[1][1] / r[1][0] for r in results]), "ms")
         bound_rows(label, [robots_bound(count) for _ in range(runs)], fast_factor)
+
+
+
+def learning_rows(runs, row):
+    """The learning group: bench/learning_speed.py's figures, each the median of ``runs``."""
+    import learning_speed as ls
+    cores = os.cpu_count()
+    stage_1 = [ls.one_env_and_bound(1, seconds=10.0) for _ in range(runs)]
+    row("learning stage 1, one StageEnv (no ROS): env steps/s",
+        "%.1f" % median([e for e, _ in stage_1]), "steps/s")
+    row("  physics bound: bare pybullet, same steps and rays",
+        "%.1f" % median([b for _, b in stage_1]), "steps/s")
+    row("  one env / physics bound", "%.2f" % median([e / b for e, b in stage_1]), "",
+        TARGETS["learning_bound"])
+    vector = [ls.vector_and_one(seconds=15.0) for _ in range(runs)]
+    row("learning stage 1, vector env (%d workers x 4 envs)" % cores,
+        "%.1f" % median([v["vector"] for v in vector]), "steps/s")
+    row("  vector env / one env", "%.2f" % median([v["vector"] / v["one"] for v in vector]),
+        "x", TARGETS["learning_vector"])
+    row("  Gymnasium's AsyncVectorEnv (%d envs, lockstep) / one env" % cores,
+        "%.2f" % median([v["async"] / v["one"] for v in vector]), "x")
+    row("  env steps per CPU s: the workers' / one env's",
+        "%.2f" % median([v["vector_per_cpu"] / v["one_per_cpu"] for v in vector]), "")
+    row("  cores the workers got (CPU s per wall s; rest: other load)",
+        "%.2f" % median([v["worker_cores"] for v in vector]), "of %d" % cores)
+    speeds = [ls.coarse_speeds(seconds=9.0) for _ in range(runs)]
+    diffs, contact = ls.pose_differences()
+    for ts in (0.005, 0.01):
+        row("learning stage 1, %g s physics steps; / 0.0025 s" % ts,
+            "%.1f / %.2f" % (median([s[ts] for s in speeds]),
+                             median([s[ts] / s[0.0025] for s in speeds])), "steps/s, x")
+        for name in diffs:
+            distance, yaw = diffs[name][ts]
+            row("  final pose vs 0.0025 s, 100 steps, %s" % name,
+                "%.1f / %.2f" % (distance * 1000, yaw * 1000), "mm, mrad")
+    stage_3 = [ls.one_env_and_bound(3, seconds=8.0) for _ in range(runs)]
+    row("learning stage 3, one StageEnv: env steps/s",
+        "%.1f" % median([e for e, _ in stage_3]), "steps/s")
+    row("  physics bound (the obstacle's ticks included)",
+        "%.1f" % median([b for _, b in stage_3]), "steps/s")
+    row("  one env / physics bound", "%.2f" % median([e / b for e, b in stage_3]), "")
 
 
 if __name__ == "__main__":

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Run the test suites in a shell where `source catkin_ws/devel/setup.bash` was done.
-#   tools/run_tests.sh [unit|rostest|all]   (default all)
+#   tools/run_tests.sh [unit|rostest|learning|all]   (default all)
 # unit: pytest under the venv's Python, again under Python 3.8 (catkin_ws/venv38, made by
 # `tools/setup.sh --test` where a Python 3.8 exists; skipped with one line where not), and
 # every shell script checked by shellcheck (one test). rostest: every test/rostest/*.test.
+# learning: test/learning (pytest: the learning environments on a two-node Ray cluster; Ray is
+# installed into the venv on first use, by tools/install_extra.sh ray).
 # Ends with one line "failed: NAME" for each test that failed (pytest's node id, or the rostest
 # file and its test case), then one summary line "tests: N passed, N failed" (", N skipped" when
 # some were), and exits non-zero if any failed.
@@ -27,12 +29,12 @@ count() {
 }
 
 run_pytest() {
-  # run_pytest LABEL PYTHON JUNIT_NAME
-  local label=$1 python=$2 junit=$3
-  echo "=== unit tests, $label (pytest, no ROS master)"
+  # run_pytest LABEL PYTHON JUNIT_NAME [FOLDER (default test/unit)]
+  local label=$1 python=$2 junit=$3 folder=${4:-test/unit}
+  echo "=== $folder, $label (pytest, no ROS master)"
   local out="$results/${junit%.xml}.txt"
   # A module that fails to import counts as one error; the other modules still run.
-  "$python" -m pytest -q -p no:cacheprovider --continue-on-collection-errors test/unit \
+  "$python" -m pytest -q -p no:cacheprovider --continue-on-collection-errors "$folder" \
     --junitxml="$results/$junit" 2>&1 | tee "$out"
   local line
   line=$(grep -E '^[=]* ?[0-9]+ (passed|failed|skipped|errors?)\b' "$out" | tail -n 1)
@@ -56,6 +58,11 @@ run_pytest() {
 run_unit() {
   run_pytest "$(python3 -c 'import sys; print("Python %d.%d" % sys.version_info[:2])')" \
     python3 pytest-unit.xml
+}
+
+run_learning() {
+  run_pytest "learning on Ray, $(python3 -c 'import sys; print("Python %d.%d" % sys.version_info[:2])')" \
+    python3 pytest-learning.xml test/learning
 }
 
 run_unit38() {
@@ -136,8 +143,9 @@ run_rostests() {
 case "$what" in
   unit) run_unit; run_unit38; run_shellcheck ;;
   rostest) run_rostests ;;
-  all) run_unit; run_unit38; run_shellcheck; run_rostests ;;
-  *) echo "usage: tools/run_tests.sh [unit|rostest|all]" >&2; exit 2 ;;
+  learning) run_learning ;;
+  all) run_unit; run_unit38; run_shellcheck; run_rostests; run_learning ;;
+  *) echo "usage: tools/run_tests.sh [unit|rostest|learning|all]" >&2; exit 2 ;;
 esac
 for name in "${failures[@]}"; do
   echo "failed: $name"

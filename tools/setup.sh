@@ -250,7 +250,7 @@ if len(inspect.signature(xml.dom.minidom._write_data).parameters) >= 3:
 PY
 }
 
-MAIN_CHECK='import rospy, pybullet, numpy, trimesh, collada, xacro
+MAIN_CHECK='import rospy, pybullet, numpy, trimesh, collada, xacro, gymnasium
 assert pybullet.isNumpyEnabled(), "pybullet was built without numpy"'
 
 install_python() {
@@ -278,12 +278,12 @@ install_python() {
   patch_xacro "$VENV/bin/python3"
   local error
   if ! error=$("$VENV/bin/python3" -c "$MAIN_CHECK" 2>&1); then
-    fail "the venv cannot import rospy, pybullet, numpy and the mesh readers together: $(tail -n 1 <<<"$error")"
+    fail "the venv cannot import rospy, pybullet, numpy, the mesh readers and gymnasium together: $(tail -n 1 <<<"$error")"
   fi
   printf '%s\n' "$PLAN_STAMP" >"$VENV/$STAMP_NAME"
 }
 
-PY38_CHECK='import rospy, genpy, pybullet, numpy, pytest, yaml, PIL, trimesh, collada
+PY38_CHECK='import rospy, genpy, pybullet, numpy, pytest, yaml, PIL, trimesh, collada, gymnasium
 assert pybullet.isNumpyEnabled(), "pybullet was built without numpy"'
 
 install_python38() {

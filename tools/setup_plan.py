@@ -44,6 +44,9 @@ PILLOW_NOETIC = "Pillow>=7.1"  # focal's 7.0 has no ImageGrab.grab(xdisplay=): t
 MESH_PIP = ("trimesh>=4,<6", "pycollada>=0.8", "charset-normalizer>=3,<4")
 MESH_PIP_PY38 = ("trimesh>=4,<5", "pycollada>=0.8,<0.9", "charset-normalizer>=3,<4")
 XACRO = "xacro==1.13.3"
+# learning/'s environments (gymnasium.make("TurtleBot3Stage1-v0")): Gymnasium 1.x, pure Python
+# (numpy, cloudpickle, typing-extensions, farama-notifications); 1.1.1 is the last for 3.8.
+GYMNASIUM = "gymnasium>=1.0,<2"
 CATKIN_LINT = "catkin-lint==1.6.25"  # make test checks the packages' CMakeLists.txt and package.xml
 WHEEL_MACHINES = ("x86_64", "amd64")
 WHEEL_PYTHONS = ((3, 8), (3, 11))  # pybullet 3.2.7 wheels: cp38, cp39, cp310, cp311
@@ -100,7 +103,8 @@ OPTIONAL_APT = ("ignition-tools", "libsdformat-dev", "xdot", "ros-noetic-rqt-gra
 
 # The Python 3.8 venv of `make test` (unit tests only): compiled modules from PyPI, since
 # Debian's are built for its own Python; Debian's pure-Python ROS modules through a .pth.
-PY38_PIP = (PYBULLET, NUMPY_PY38, "pytest", "Pillow", "PyYAML", "netifaces") + MESH_PIP_PY38
+PY38_PIP = ((PYBULLET, NUMPY_PY38, "pytest", "Pillow", "PyYAML", "netifaces") + MESH_PIP_PY38
+            + (GYMNASIUM,))
 
 UBUNTU_CODENAMES = {"bionic": (18, 4), "focal": (20, 4), "jammy": (22, 4), "noble": (24, 4)}
 DEBIAN_CODENAMES = {"buster": 10, "bullseye": 11, "bookworm": 12, "trixie": 13, "forky": 14}
@@ -140,7 +144,7 @@ class Plan:
     @property
     def pip(self):
         meshes = MESH_PIP_PY38 if tuple(self.python) == (3, 8) else MESH_PIP
-        return ((PYBULLET, self.numpy) + meshes + (XACRO, CATKIN_LINT)
+        return ((PYBULLET, self.numpy) + meshes + (XACRO, CATKIN_LINT, GYMNASIUM)
                 + ((self.pytest,) if self.pytest else ())
                 + ((PILLOW_NOETIC,) if self.ros == "noetic" else ()))
 

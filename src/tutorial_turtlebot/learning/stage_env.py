@@ -139,5 +139,6 @@ class StageEnv(gymnasium.Env):
     @staticmethod
     def _array(values) -> np.ndarray:
         out = np.asarray(values, dtype=np.float32)
-        np.nan_to_num(out, copy=False, neginf=0.0)
+        if not np.isfinite(out).all():   # (the check alone is the cheaper when all are)
+            np.nan_to_num(out, copy=False, neginf=0.0)
         return out

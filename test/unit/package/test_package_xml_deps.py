@@ -17,8 +17,8 @@ KEYS = {
     "PIL": "python3-pil", "tkinter": "python3-tk", "pytest": "python3-pytest",
     "collada": "python3-collada", "trimesh": "python3-trimesh-pip",
 }
-# From PyPI only, no rosdep key (tools/setup.sh pip-installs it; package.xml says so).
-PIP_ONLY = {"pybullet"}
+# From PyPI only, no rosdep key (tools/setup.sh pip-installs them; package.xml says so).
+PIP_ONLY = {"pybullet", "gymnasium"}
 
 
 def is_stdlib(name):

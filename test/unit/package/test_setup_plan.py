@@ -13,9 +13,9 @@ ROOT = unit_paths.ROOT
 SCRIPT = os.path.join(ROOT, "tools", "setup_plan.py")
 SETUP_SH = os.path.join(ROOT, "tools", "setup.sh")
 MESHES_XACRO = ("trimesh>=4,<6", "pycollada>=0.8", "charset-normalizer>=3,<4", "xacro==1.13.3",
-                "catkin-lint==1.6.25")
+                "catkin-lint==1.6.25", "gymnasium>=1.0,<2")
 MESHES_XACRO_PY38 = ("trimesh>=4,<5", "pycollada>=0.8,<0.9", "charset-normalizer>=3,<4",
-                     "xacro==1.13.3", "catkin-lint==1.6.25")
+                     "xacro==1.13.3", "catkin-lint==1.6.25", "gymnasium>=1.0,<2")
 
 _spec = importlib.util.spec_from_file_location("setup_plan", SCRIPT)
 setup_plan = importlib.util.module_from_spec(_spec)
@@ -258,8 +258,8 @@ def test_shell_output_evaluates_in_bash(tmp_path):
          '"$PLAN_GAZEBO_MSGS" "$PLAN_PLATFORM"', "bash", run.stdout],
         stdout=subprocess.PIPE, universal_newlines=True, timeout=60).stdout.splitlines()
     assert shown == ["/opt/ros/noetic/setup.bash", "pybullet==3.2.7 numpy>=1.23,<1.25 trimesh>=4,<5 pycollada>=0.8,<0.9 "
-                     "charset-normalizer>=3,<4 xacro==1.13.3 catkin-lint==1.6.25 pytest>=6.2 "
-                     "Pillow>=7.1",
+                     "charset-normalizer>=3,<4 xacro==1.13.3 catkin-lint==1.6.25 "
+                     "gymnasium>=1.0,<2 pytest>=6.2 Pillow>=7.1",
                      "system", "Ubuntu 20.04 LTS with ROS Noetic (/opt/ros/noetic)"]
     # a name with a quote survives the round trip
     run = run_plan(tmp_path, 'ID=debian\nVERSION_ID=12\nPRETTY_NAME="Bob\'s Debian 12"\n',

@@ -19,6 +19,7 @@ MAY_IMPORT = {
     "sim.world": {"sim.kinematics", "sim.files", "sim.engine", "sim.devices"},
     "gazebo": {"sim"},
     "lab": set(),
+    "learning": {"sim"},
 }
 ROS = ("rospy", "rosgraph", "roslaunch", "genpy", "rosbag", "tf2_ros", "actionlib")
 
@@ -106,3 +107,24 @@ def test_the_rules_see_every_wing():
     assert {"sim.files", "sim.engine", "sim.devices", "sim.world", "gazebo", "lab"} <= parts
     assert any(m.startswith("sim.engine.") and "pybullet" in " ".join(imports(m, MODULES[m]))
                for m in MODULES)
+
+
+def test_setup_py_installs_every_package():
+    """catkin_make install installs the packages setup.py names: a folder of src/ missing there
+    would be missing from every install space."""
+    folders = {os.path.relpath(folder, os.path.dirname(PACKAGE)).replace(os.sep, ".")
+               for folder, _, files in os.walk(PACKAGE) if "__init__.py" in files}
+    with open(os.path.join(unit_paths.ROOT, "setup.py"), encoding="utf-8") as f:
+        tree = ast.parse(f.read())
+    listed = {node.value for node in ast.walk(tree)
+              if isinstance(node, ast.Constant) and isinstance(node.value, str)
+              and node.value.startswith("tutorial_turtlebot")}
+    assert folders <= listed, sorted(folders - listed)
+
+
+@pytest.mark.parametrize("module", sorted(m for m in MODULES
+                                          if m.startswith(("sim.", "lab.", "gazebo."))))
+def test_no_wing_but_learning_needs_the_learning_libraries(module):
+    found = {name for name in imports(module, MODULES[module])
+             if name.split(".")[0] in ("gymnasium", "ray", "stable_baselines3", "torch")}
+    assert not found, "%s imports %s: only learning/ may" % (module, found)

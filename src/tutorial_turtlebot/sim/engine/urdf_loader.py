@@ -55,10 +55,12 @@ def setup_movable(client: int, body: int) -> None:
     for link in range(-1, pybullet.getNumJoints(body, physicsClientId=client)):
         pybullet.setCollisionFilterGroupMask(body, link, MOVABLE_COLLISION_GROUP,
                                              MOVABLE_COLLISION_MASK, physicsClientId=client)
-        pybullet.changeDynamics(body, link, lateralFriction=1.0,
-                                linearDamping=0.0, angularDamping=0.0,  # none in Gazebo
+        pybullet.changeDynamics(body, link, linearDamping=0.0, angularDamping=0.0,  # none in Gazebo
                                 activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
                                 physicsClientId=client)
+        # a call of its own: with the arguments above pybullet drops the friction of a jointed
+        # link (it stays at its default 0.5)
+        pybullet.changeDynamics(body, link, lateralFriction=1.0, physicsClientId=client)
         if link >= 0:
             pybullet.setJointMotorControl2(body, link, pybullet.VELOCITY_CONTROL, force=0.0,
                                            physicsClientId=client)

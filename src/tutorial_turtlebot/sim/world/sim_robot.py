@@ -228,6 +228,10 @@ class SimRobot:
             else:
                 self.body.set_wheel_velocities(left, right)
 
+    def next_tick_ns(self) -> float:
+        """When before_step next has something to do (ns; inf for a robot with no drive)."""
+        return self.control.next_ns if self.drive_plugin else math.inf
+
     def due(self, now_ns: int) -> List[str]:
         """The outputs due at ``now_ns`` (odom, joint_states, scan, imu, camera) after a step;
         updates ``next_output_ns``. Samples what must be sampled at each tick."""

@@ -434,14 +434,18 @@ class WorldControl:
         """Stop every wrench on ``body``; how many there were (an unknown name: 0)."""
         return self.sim.forces.clear_wrenches(body)
 
+    def _joint_owners(self, name: str) -> Tuple[List[WorldModel], str]:
+        """(the models a joint ``name`` may belong to, in world order; the joint's own name):
+        the one model "model::joint" names, else every model."""
+        model_name, sep, joint_name = name.rpartition("::")
+        if sep and model_name in self.models:
+            return [self.models.get(model_name)], joint_name
+        return self.models.models(), name
+
     def _joint(self, name: str, what: str) -> Tuple[WorldModel, Body, Joint]:
         """(model, body, joint) of the movable joint ``name`` (the first model in world order
         that has one of that name, or "model::joint")."""
-        model_name, sep, joint_name = name.rpartition("::")
-        if sep and model_name in self.models:
-            candidates = [self.models.get(model_name)]
-        else:
-            candidates, joint_name = self.models.models(), name
+        candidates, joint_name = self._joint_owners(name)
         for model in candidates:
             if joint_name not in model.joints:
                 continue
@@ -456,11 +460,7 @@ class WorldControl:
     def _listed_joint(self, name: str) -> Optional[str]:
         """The <joint type> of the first model (in world order, or the one "model::joint"
         names) that lists joint ``name`` without simulating it; None if none does."""
-        model_name, sep, joint_name = name.rpartition("::")
-        if sep and model_name in self.models:
-            candidates = [self.models.get(model_name)]
-        else:
-            candidates, joint_name = self.models.models(), name
+        candidates, joint_name = self._joint_owners(name)
         for model in candidates:
             if joint_name in model.joint_types:
                 return model.joint_types[joint_name]

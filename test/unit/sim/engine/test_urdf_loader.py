@@ -156,9 +156,6 @@ def test_a_movable_models_base_slides_with_friction_1(client):
     assert pybullet.getDynamicsInfo(movable.uid, -1, physicsClientId=client)[1] == 1.0
 
 
-@pytest.mark.xfail(strict=True, reason="src bug: setup_movable sets a jointed link's friction in "
-                   "the changeDynamics call that also sets its damping and activation state, "
-                   "and pybullet then leaves the link's friction at its 0.5")
 def test_a_movable_models_links_slide_with_friction_1(client):
     movable = load_movable(client, WHEEL)
     assert pybullet.getDynamicsInfo(movable.uid, 0, physicsClientId=client)[1] == 1.0

@@ -553,3 +553,31 @@ def test_custom_rates(make_sim, tmp_path):
     counts = run(sim, 1.0)
     assert counts["odom"] == 50 and counts["scan"] == 10 and counts["imu"] == 200
     assert sim.time_ns == 1_005_000_000
+
+
+# --- advance -----------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("time_step", [0.0025, 0.004])
+def test_advance_is_step_bit_for_bit(make_sim, time_step):
+    """Simulation.advance(n) (no outputs; the learning environments' stepping) gives the same
+    physics as n step() calls, bit for bit: the same commands (driving, turning, pushing on a
+    wall, braking) in chunks that fall across the drive's 30 Hz ticks give the same pose,
+    velocities, wheel states and clock."""
+    stepped, advanced = (make_sim(model="burger", world="turtlebot3_stage_1",
+                                  time_step=time_step) for _ in range(2))
+    plan = [((0.15, 0.0), [1, 7, 80, 13]), ((0.15, 1.5), [40, 3]), ((0.22, 0.0), [4000]),
+            ((0.0, 0.0), [5, 120]), ((0.1, 2.0), [2, 2, 61])]
+    for (linear, angular), chunks in plan:
+        for sim in (stepped, advanced):
+            sim.robot.command(linear, angular)
+        for n in chunks:
+            for _ in range(n):
+                stepped.step()
+            advanced.advance(n)
+            assert advanced.time_ns == stepped.time_ns
+            assert advanced.robot.ground_truth() == stepped.robot.ground_truth()
+            assert advanced.robot.body.velocity() == stepped.robot.body.velocity()
+            assert advanced.robot.joint_states() == stepped.robot.joint_states()
+            if n == 4000:   # it drove into the arena's wall and stopped there
+                (x, y, _), _ = advanced.robot.ground_truth()
+                assert min(advanced.robot.scan()) < 0.13 and math.hypot(x, y) > 1.5
