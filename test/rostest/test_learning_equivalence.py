@@ -13,15 +13,13 @@ and steering goes on), then replayed on the ROS client. The two runs are one aft
 so that StageEnv's physics does not delay the ROS client.
 
 When an action acts. The diff drive reads its command at its 30 Hz control ticks, at the start
-of a physics step (as gazebo_ros_diff_drive); a tick falls on every scan moment. StageEnv sets
-the command just before the tick at the step's start: it acts at once. Over ROS the command
-comes after the scan, when the sim has already run that tick (its physics runs up to 20 ms of
-wall time ahead of its messages, and the scan is made after the step that reaches its moment):
-the last action goes on for one more control period, 1/30 s (35 ms on the 2.5 ms step grid).
-That is 0.05 rad of heading at a change of 1.5 rad/s, and scans 17 cm apart (measured). The test
-compares the ROS client with StageEnv's step as it acts over ROS (CommandsAsOverRos: the last
-command for the physics step of the tick, then StageEnv's step unchanged), and prints how far
-StageEnv as it is lies from ROS.
+of a physics step (as gazebo_ros_diff_drive); a tick falls on every scan moment. Over ROS the
+command comes after the scan, when the sim has already run that tick (its physics runs up to
+20 ms of wall time ahead of its messages, and the scan is made after the step that reaches its
+moment): the last action goes on for one more control period, 1/30 s (35 ms on the 2.5 ms step
+grid). StageEnv does the same (its step keeps the last command for the physics step of that
+tick); a StageEnv whose command acted at once was 0.05 rad of heading and 17 cm of scan off
+(measured), which this test would catch.
 
 The real-time factor (0.2). With the tick, the delay of a command does not matter as long as it
 reaches the sim before the next tick: 35 ms of sim time, minus the up to 20 ms x factor the
@@ -138,60 +136,12 @@ def noise_free_urdf() -> str:
     return text.replace(laser_noise, "<mean>0.0</mean>\n          <stddev>0.0</stddev>")
 
 
-class CommandsAsOverRos:
-    """StageEnv's step with its action's command taking effect when it does over ROS: one drive
-    control tick (1/30 s, 35 ms on the 2.5 ms physics grid) after the scan.
-
-    The diff drive reads its command at control ticks of 30 Hz, at the start of a physics step
-    (SimRobot.before_step), as gazebo_ros_diff_drive does; a tick falls on every scan moment.
-    StageEnv sets the command just before the tick at the step's start, so it acts at once. Over
-    ROS the command is sent after the scan of that moment came, when the sim's physics has
-    already run that tick (it runs ahead of its messages, and the scan is made after the step
-    that reaches its moment): the drive goes on with the last action's command until the next
-    tick. This wrapper holds the last action's command for the first physics step (the one
-    with the tick at the scan's moment), then gives the step's command, and otherwise runs
-    StageEnv.step unchanged (its obstacle ticks, observation, reward and goals)."""
-
-    def __init__(self, env: StageEnv):
-        self.env = env
-        self.held = (0.0, 0.0)   # the drive's command at the last scan's tick
-
-    def reset(self, **kwargs):
-        self.held = (0.0, 0.0)   # reset_simulation stops the drive
-        return self.env.reset(**kwargs)
-
-    def step(self, action):
-        robot, sim = self.env.robot, self.env.sim
-        command, advance = robot.command, sim.advance
-        pending = []
-        command(*self.held)
-
-        def first_command(linear, angular):   # StageEnv.step's command of the action
-            del robot.command
-            pending.append((linear, angular))
-
-        def first_advance(steps):
-            del sim.advance
-            advance(1)                       # the tick at the scan's moment: the held command
-            command(*pending[0])
-            advance(steps - 1)
-
-        robot.command, sim.advance = first_command, first_advance
-        try:
-            result = self.env.step(action)
-        finally:
-            robot.__dict__.pop("command", None)
-            sim.__dict__.pop("advance", None)
-        self.held = pending[0]
-        return result
-
-
-def plan_and_run_env(stage: int, as_over_ros: bool = True, plan=None):
-    """Run StageEnv (``as_over_ros``: its commands as over ROS, CommandsAsOverRos) with the
-    scripted policy, or the given ``plan``; the plan (None = reset, else an action) and rows."""
+def plan_and_run_env(stage: int, plan=None):
+    """Run StageEnv with the scripted policy, or the given ``plan``; the plan (None = reset, else
+    an action) and rows."""
     env = StageEnv(stage)
     env.robot.laser = dataclasses.replace(env.robot.laser, noise_sigma=0.0)
-    stepper = CommandsAsOverRos(env) if as_over_ros else env
+    stepper = env
     rows = []
     if plan is not None:
         for entry in plan:
@@ -321,17 +271,6 @@ class LearningEquivalence(unittest.TestCase):
         wall1 = time.monotonic()
         ros_rows = self.run_ros(plan)
         ros_wall = time.monotonic() - wall1
-        # for the record: StageEnv as it is (its command acts 35 ms earlier than over ROS)
-        _, raw_rows = plan_and_run_env(self.stage, as_over_ros=False, plan=plan)
-        raw = [float(np.max(np.abs(np.array(e["state"][:24]) - np.array(r["state"][:24]))))
-               for e, r in zip(raw_rows, ros_rows)]
-        flags = sum(e["done"] != r["done"] or e["goal"] != r["goal"]
-                    for e, r in zip(raw_rows, ros_rows))
-        line = ("stage %d: StageEnv as it is against ROS: max scan difference %.4f m, %d steps "
-                "over 1 cm, %d steps with other done/goal flags"
-                % (self.stage, max(raw), sum(d > SCAN_TOL for d in raw), flags))
-        rospy.loginfo(line)
-        print(line)
         self.report(plan, env_rows, ros_rows, env_wall, ros_wall)
 
     def report(self, plan, env_rows, ros_rows, env_wall, ros_wall):

@@ -10,7 +10,10 @@ turtlebot3_gazebo's stage launch spawns it, with its laser at the 24 samples of 
   reset, and any with a seed, also starts the goal sequence (its first goal is (0.6, 0)) and
   the laser's noise from that seed. Later resets keep the goal, as ROBOTIS' clients do.
 - ``step(action)``: (observation, reward, terminated = a collision, truncated = False, info);
-  a goal reached gives its reward and the next goal, and the episode goes on. Registered with a
+  a goal reached gives its reward and the next goal, and the episode goes on. The command acts
+  as it does over ROS: from the diff drive's first control tick after the scan (1/30 s later).
+  ROBOTIS' respawner sleeps 0.5 s of wall time before it spawns the next goal, the robot
+  stopped; how much sim time that is depends on the sim's speed, so there is no pause here. Registered with a
   TimeLimit of 501 steps, where turtlebot3_dqn ends an episode.
 - ``fix_pinned_collision``: ROBOTIS' collision test misses the -inf the laser reads below
   0.12 m, so a robot pressed against a wall is never flagged; True counts it (off by default).
@@ -89,17 +92,23 @@ class StageEnv(gymnasium.Env):
         action = int(action)
         if not 0 <= action < rs.ACTIONS:
             raise ValueError("action %r: the actions are 0 to %d" % (action, rs.ACTIONS - 1))
+        # Over ROS the command comes after the scan, when the diff drive's control tick of that
+        # moment (30 Hz: one falls on every scan) has read the last one: the last action goes on
+        # for one physics step, and the new one acts from the next tick, 1/30 s later.
+        self.sim.advance(1)
         self.robot.command(*rs.action_command(action))
+        steps = self._tick_steps - 1
         for _ in range(self._ticks):
-            self.sim.advance(self._tick_steps)
+            self.sim.advance(steps)
             self._move_obstacles()
+            steps = self._tick_steps
         x, y, yaw = self._odometry()
         obs = self._observe(x, y, yaw)
         value = rs.reward(self.stage, obs.values, action, self._start_distance, obs.collision,
                           obs.at_goal)
         info = self._info(obs)
-        if obs.collision or obs.at_goal:
-            self.robot.command(0.0, 0.0)
+        # (ROBOTIS' client sends a stop at a goal or a collision, then the next command at once:
+        # the stop never reaches a tick; a collision ends the episode and reset stops the robot)
         if obs.at_goal:
             self.goal = self._goals.next()
             self._start_distance = rs.goal_distance(self.goal, x, y)
