@@ -18,9 +18,13 @@ import process_helpers  # noqa: E402
 from process_helpers import (cpu_seconds, free_port, rss_kb, signal_process,  # noqa: E402
                              stop_process, wait_for)
 
-# a Python child that ignores the signals named in IGNORE, then says "ready"
+# a Python child that ignores the signals named in IGNORE, then says "ready". It first sets
+# SIGINT and SIGTERM to their default (a child inherits an ignored SIGINT: a shell's background
+# job, as in CI's Debian 13 pass, has one)
 CHILD = """
 import signal, time
+signal.signal(signal.SIGINT, signal.SIG_DFL)
+signal.signal(signal.SIGTERM, signal.SIG_DFL)
 for name in %r:
     signal.signal(getattr(signal, name), signal.SIG_IGN)
 print("ready", flush=True)
@@ -30,6 +34,8 @@ time.sleep(120)
 # says "ready CHILD_PID"
 PARENT = """
 import signal, subprocess, sys, time
+signal.signal(signal.SIGINT, signal.SIG_DFL)
+signal.signal(signal.SIGTERM, signal.SIG_DFL)
 for name in %r:
     signal.signal(getattr(signal, name), signal.SIG_IGN)
 child = subprocess.Popen([sys.executable, "-c", %r], stdout=subprocess.PIPE)
