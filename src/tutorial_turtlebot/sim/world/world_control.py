@@ -499,12 +499,18 @@ class WorldControl:
         rotation = rotation_matrix(com[1])
         return inertial.mass, tuple(com[0]), rotation, np.array(inertial.moments, dtype=float)
 
-    def get_link_properties(self, scoped: str) -> LinkProperties:
-        _check_names("GetLinkProperties: ", link_name=scoped)
+    def _properties_link(self, scoped: str, what: str) -> Tuple[WorldModel, LinkPart]:
+        """(model, link) that ``scoped`` ("model::link") names for service ``what``;
+        RequestError (Gazebo's text) if the name is bad or there is none."""
+        _check_names(what + ": ", link_name=scoped)
         found = self._scoped_link(scoped)
         if found is None:
-            raise RequestError("GetLinkProperties: link not found, did you forget to scope the "
-                               "link by model name?")
+            raise RequestError("%s: link not found, did you forget to scope the link by model "
+                               "name?" % what)
+        return found
+
+    def get_link_properties(self, scoped: str) -> LinkProperties:
+        found = self._properties_link(scoped, "GetLinkProperties")
         _, link = found
         if link.body is None:   # part of a static model: nothing moves it
             return LinkProperties((0.0, 0.0, 0.0), True, 0.0, (0.0,) * 6)
@@ -522,11 +528,7 @@ class WorldControl:
         mass, link axes, kg m^2) and whether gravity pulls it. ``com`` (the centre of mass in
         the link frame, m) must stay where it is: pybullet cannot move it in a built body;
         the com orientation is ignored, as Gazebo ignores it."""
-        _check_names("SetLinkProperties: ", link_name=scoped)
-        found = self._scoped_link(scoped)
-        if found is None:
-            raise RequestError("SetLinkProperties: link not found, did you forget to scope the "
-                               "link by model name?")
+        found = self._properties_link(scoped, "SetLinkProperties")
         model, link = found
         if not rf.finite(com, (mass,), inertia):
             raise RequestError("SetLinkProperties: NaN or infinite value in the request")
