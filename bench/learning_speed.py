@@ -18,6 +18,9 @@ that a drift of the machine's speed falls on both alike):
   coarse steps      StageEnv at time_step 0.005 and 0.01 s against 0.0025 s, and how far the
                     robot's final pose lies from the 0.0025 s one after 100 env steps of a
                     scripted policy (open field; and driving into a wall)
+  render            ms per render() of a StageEnv with render_mode "rgb_array" (the top-down
+                    picture; the Waffle Pi's camera) against ms per env step, a render after
+                    each step (as Gymnasium's RecordVideo renders)
 """
 import math
 import os
@@ -318,6 +321,35 @@ def pose_differences(time_steps=(0.005, 0.01), reference=0.0025):
     return out, contact
 
 
+def render_cost(stage=1, seconds=5.0, model="burger", camera=False, seed=0):
+    """(ms per render() of StageEnv(stage, render_mode="rgb_array"), ms per env step): seeded
+    random actions (reset at a collision or after EPISODE), a render after each step as
+    Gymnasium's RecordVideo does, each timed alone; ``camera``: render_camera (the robot's
+    camera image) instead of the top-down picture."""
+    env = StageEnv(stage, model=model, render_mode="rgb_array", render_camera=camera)
+    rng, clock = random.Random(seed), time.perf_counter
+    try:
+        env.reset(seed=seed)
+        env.render()   # (the first frame draws the background)
+        step_s = render_s = 0.0
+        count = t = 0
+        start = clock()
+        while clock() - start < seconds:
+            t0 = clock()
+            terminated = env.step(rng.randrange(rs.ACTIONS))[2]
+            t1 = clock()
+            env.render()
+            render_s += clock() - t1
+            step_s += t1 - t0
+            count, t = count + 1, t + 1
+            if terminated or t >= EPISODE:
+                env.reset()
+                t = 0
+        return 1000 * render_s / count, 1000 * step_s / count
+    finally:
+        env.close()
+
+
 def main():
     seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 12.0
     env, bound = one_env_and_bound(1, seconds)
@@ -339,6 +371,11 @@ def main():
         print("%s (contact at 0.0025: %s): " % (name, contact[name]) + ", ".join(
             "%g s: %.1f mm, %.2f mrad" % (ts, d * 1000, a * 1000)
             for ts, (d, a) in by_step.items()), flush=True)
+    for label, model, camera in (("top-down", "burger", False),
+                                 ("camera, waffle_pi", "waffle_pi", True)):
+        render_ms, step_ms = render_cost(1, seconds / 2, model, camera)
+        print("render() rgb_array (%s): %.2f ms, an env step %.2f ms (%.2f)"
+              % (label, render_ms, step_ms, render_ms / step_ms), flush=True)
 
 
 if __name__ == "__main__":

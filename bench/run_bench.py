@@ -60,7 +60,8 @@ Measured (Burger in turtlebot3_world unless said):
                     turns, and Gymnasium's AsyncVectorEnv (one env per core) beside it;
                     0.005 and 0.01 s physics steps against 0.0025 s, and how far the final
                     pose of 100 scripted env steps moves (open field; into a wall); stage 3
-                    (its moving obstacle) and its bound
+                    (its moving obstacle) and its bound; ms per render() ("rgb_array": the
+                    top-down picture; the Waffle Pi's camera) against ms per env step
 
   soak              bench/soak.py: 30 sim minutes as fast as possible with four Burgers, every
                     topic subscribed, spawns and deletes, resets, NaN and 1e9 cmd_vel, pauses:
@@ -1035,6 +1036,15 @@ def learning_rows(runs, row):
     row("  physics bound (the obstacle's ticks included)",
         "%.1f" % median([b for _, b in stage_3]), "steps/s")
     row("  one env / physics bound", "%.2f" % median([e / b for e, b in stage_3]), "")
+    renders = [ls.render_cost(1, seconds=5.0) for _ in range(runs)]
+    row("learning stage 1, render() rgb_array / env step",
+        "%.2f / %.2f" % (median([r for r, _ in renders]), median([s for _, s in renders])),
+        "ms")
+    cameras = [ls.render_cost(1, seconds=3.0, model="waffle_pi", camera=True)
+               for _ in range(runs)]
+    row("  render_camera (waffle_pi's camera) / env step",
+        "%.2f / %.2f" % (median([r for r, _ in cameras]), median([s for _, s in cameras])),
+        "ms")
 
 
 if __name__ == "__main__":

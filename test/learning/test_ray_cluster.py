@@ -7,8 +7,9 @@ Not a unit test (Ray starts in 4 to 15 s, and is an optional extra): run it on i
 It installs the ray extra on first use (bash tools/install_extra.sh ray), and skips, with one
 line, only when PyPI is unreachable. It starts a head node and a second node (each one CPU,
 so that Ray must place one actor on each), steps two actors of two StageEnvs each in batches,
-and checks that steps came back from both nodes. It prints how long the cluster took to start
-and the stepping rate. About a minute here.
+and checks that steps came back from both nodes, and that the step after an episode's end
+returns the next episode's first observation (NEXT_STEP autoreset), the one a lone env seeded
+alike gives. It prints how long the cluster took to start and the stepping rate.
 """
 import importlib
 import os
@@ -99,4 +100,41 @@ def test_steps_come_back_from_both_nodes(cluster, capsys):
                     "(%.0f env steps/s)" % (ENVS_PER_ACTOR, made, STEPS, runner.num_envs,
                                             stepped, STEPS * runner.num_envs / stepped))
     finally:
+        runner.close()
+
+
+def test_the_step_after_an_episodes_end_returns_the_next_first_observation(cluster):
+    """Episodes of 3 steps (a TimeLimit): a first batch of 3 steps ends every episode, so the
+    next batch's first step is each env's reset, and gives what a lone env gives at the reset
+    after the same seed and actions; the step after it is a step again."""
+    import gymnasium
+    from tutorial_turtlebot.learning.ray_actors import RayStageRunner
+
+    seed, limit = 11, 3
+    runner = RayStageRunner("TurtleBot3Stage1-v0", actors=2, envs_per_actor=ENVS_PER_ACTOR,
+                            address=cluster.address, env_kwargs={"max_episode_steps": limit})
+    lone = gymnasium.make("TurtleBot3Stage1-v0", max_episode_steps=limit)
+    try:
+        first = runner.reset(seed=seed)
+        actions = np.random.default_rng(1).integers(0, 5, size=(limit + 2, runner.num_envs))
+        ended = runner.step_batch(actions[:limit])
+        assert ended.truncated[-1].all() and not ended.truncated[:-1].any()
+        after = runner.step_batch(actions[limit:])
+        assert not (after.terminated | after.truncated).any()
+        assert (after.rewards[0] == 0).all() and not after.at_goal[0].any()
+        for env in range(runner.num_envs):
+            obs, _ = lone.reset(seed=seed + env)
+            assert np.array_equal(obs, first[env])
+            for index in range(limit):
+                obs, reward, _, truncated, _ = lone.step(actions[index, env])
+                assert np.array_equal(obs, ended.observations[index, env]), (env, index)
+            assert truncated
+            obs, info = lone.reset()                  # the next episode's first observation
+            assert info["sim_time"] == 0.0
+            assert np.array_equal(after.observations[0, env], obs), env
+            obs, reward, _, _, _ = lone.step(actions[limit + 1, env])   # (action limit: ignored)
+            assert np.array_equal(after.observations[1, env], obs), env
+            assert after.rewards[1, env] == reward
+    finally:
+        lone.close()
         runner.close()

@@ -2,7 +2,14 @@
 
 Each actor holds ``envs_per_actor`` StageEnvs (learning.stage_env, through gymnasium.make so
 that the 501-step limit applies) and steps them in batches: one remote call runs K envs for
-M steps, since one call per env step costs more than the step (about 126 steps/s measured).
+M steps, since one call per env step costs more than the step.
+
+Autoreset: Gymnasium 1.x's ``AutoresetMode.NEXT_STEP``, the default of its vector envs and of
+learning.vector's: the step after one that ended an env's episode (terminated or truncated)
+resets that env instead of stepping it, and returns the next episode's first observation with
+reward 0 and terminated, truncated and at_goal False; the action given for it is ignored. This
+holds across calls (an episode ended by a batch's last step is reset by the next batch's first)
+and in step_batch and rollout alike (NextStepAutoreset).
 
     from tutorial_turtlebot.learning.ray_actors import RayStageRunner
     with RayStageRunner("TurtleBot3Stage1-v0", actors=2, envs_per_actor=4,
@@ -29,12 +36,14 @@ from typing import Callable, Dict, List, Optional, Sequence
 import numpy as np
 
 INSTALL_HINT = "Ray is not installed: run 'bash tools/install_extra.sh ray' (the ray extra)"
+AUTORESET_MODE = "NextStep"   # the value of gymnasium.vector.AutoresetMode.NEXT_STEP: the only one
 
 Batch = collections.namedtuple("Batch", [
-    "observations",   # (M, N, 28) float32: each env's observation after each step
-    "rewards",        # (M, N) float64: ROBOTIS' reward of each step
-    "terminated",     # (M, N) bool: a collision ended the episode (the env was then reset)
-    "truncated",      # (M, N) bool: the 501-step limit ended it (the env was then reset)
+    "observations",   # (M, N, 28) float32: each env's observation after each step (NEXT_STEP:
+                      #   the step after an episode's end gives the next episode's first)
+    "rewards",        # (M, N) float64: ROBOTIS' reward of each step (0 at a reset step)
+    "terminated",     # (M, N) bool: a collision ended the episode (the env's next step resets it)
+    "truncated",      # (M, N) bool: the 501-step limit ended it (the env's next step resets it)
     "at_goal",        # (M, N) bool: the step reached the goal (the next goal follows)
     "node_ids",       # N str: the Ray node id of the actor that holds each env
     "actor_ids",      # N int: the actor (0 .. actors-1) that holds each env
@@ -51,6 +60,49 @@ def import_ray():
         raise ImportError(INSTALL_HINT) from None
 
 
+class NextStepAutoreset:
+    """K environments stepped together with Gymnasium 1.x's NEXT_STEP autoreset (as
+    learning.vector's StageVectorEnv by default): an env whose last step ended its episode
+    (terminated or truncated) is reset at its next step, which returns that reset's observation,
+    reward 0, terminated, truncated and at_goal False, and ignores the action. Plain Python: the
+    Ray actor (StageActorBody) holds one."""
+
+    def __init__(self, envs: Sequence):
+        self.envs = list(envs)
+        self.observations: Optional[np.ndarray] = None    # (K, 28): each env's latest one
+        self.ended = np.zeros(len(self.envs), dtype=bool)  # its last step ended its episode
+
+    def reset(self, seeds: Optional[Sequence[Optional[int]]] = None) -> np.ndarray:
+        """Reset every env (seed i to env i; None keeps its goal sequence): (K, 28)."""
+        seeds = list(seeds) if seeds is not None else [None] * len(self.envs)
+        if len(seeds) != len(self.envs):
+            raise ValueError("%d seeds for %d environments" % (len(seeds), len(self.envs)))
+        self.observations = np.stack([env.reset(seed=seed)[0]
+                                      for env, seed in zip(self.envs, seeds)])
+        self.ended[:] = False
+        return self.observations.copy()
+
+    def step(self, actions: Sequence[int]):
+        """One step of every env (K actions): (observations (K, 28), rewards (K,), terminated,
+        truncated, at_goal (K,) bools), an ended env reset instead of stepped."""
+        if self.observations is None:
+            self.reset()
+        count = len(self.envs)
+        rewards = np.zeros(count)
+        terminated = np.zeros(count, dtype=bool)
+        truncated = np.zeros(count, dtype=bool)
+        at_goal = np.zeros(count, dtype=bool)
+        for k, env in enumerate(self.envs):
+            if self.ended[k]:
+                obs, _ = env.reset()
+            else:
+                obs, rewards[k], terminated[k], truncated[k], info = env.step(int(actions[k]))
+                at_goal[k] = bool(info.get("at_goal"))
+            self.observations[k] = obs
+        self.ended = terminated | truncated
+        return self.observations.copy(), rewards, terminated, truncated, at_goal
+
+
 class StageActorBody:
     """What one Ray actor holds: ``count`` environments of ``env_id`` in one process.
 
@@ -61,7 +113,7 @@ class StageActorBody:
         import tutorial_turtlebot.learning  # noqa: F401  (registers the stage ids)
 
         self.envs = [gymnasium.make(env_id, **(env_kwargs or {})) for _ in range(count)]
-        self.observations = None
+        self.stepper = NextStepAutoreset(self.envs)
 
     def node_id(self) -> str:
         """The id of the Ray node this actor runs on."""
@@ -69,10 +121,7 @@ class StageActorBody:
 
     def reset(self, seeds: Optional[Sequence[Optional[int]]] = None) -> np.ndarray:
         """Reset every env (seed i to env i; None keeps its goal sequence): (K, 28)."""
-        seeds = list(seeds) if seeds is not None else [None] * len(self.envs)
-        self.observations = np.stack([env.reset(seed=seed)[0]
-                                      for env, seed in zip(self.envs, seeds)])
-        return self.observations
+        return self.stepper.reset(seeds)
 
     def step(self, actions) -> Dict[str, np.ndarray]:
         """Step each env with ``actions`` (M, K): M steps of the K envs, in one call."""
@@ -80,32 +129,29 @@ class StageActorBody:
         return self._run(actions.shape[0], lambda index, obs: actions[index])
 
     def rollout(self, policy: Callable[[np.ndarray], Sequence[int]], steps: int):
-        """``steps`` steps, the actions from ``policy`` (K, 28) -> (K,) at each step."""
+        """``steps`` steps, the actions from ``policy`` (K, 28) -> (K,) at each step, given the
+        observations the last step returned (an ended episode's last: its reset comes next)."""
         return self._run(steps, lambda index, obs: policy(obs))
 
     def _run(self, steps: int, choose) -> Dict[str, np.ndarray]:
-        if self.observations is None:
-            self.reset()
+        """``steps`` steps of the K envs, the actions from ``choose(index, observations)``."""
+        if self.stepper.observations is None:
+            self.stepper.reset()
         started = time.monotonic()
         count = len(self.envs)
-        out = {"observations": np.zeros((steps, count) + self.observations.shape[1:],
+        shape = (steps, count)
+        out = {"observations": np.zeros(shape + self.stepper.observations.shape[1:],
                                         dtype=np.float32),
-               "rewards": np.zeros((steps, count)),
-               "terminated": np.zeros((steps, count), dtype=bool),
-               "truncated": np.zeros((steps, count), dtype=bool),
-               "at_goal": np.zeros((steps, count), dtype=bool)}
+               "rewards": np.zeros(shape), "terminated": np.zeros(shape, dtype=bool),
+               "truncated": np.zeros(shape, dtype=bool), "at_goal": np.zeros(shape, dtype=bool)}
+        observations = self.stepper.observations.copy()
         for index in range(steps):
-            actions = np.asarray(choose(index, self.observations)).reshape(count)
-            for k, env in enumerate(self.envs):
-                obs, reward, terminated, truncated, info = env.step(int(actions[k]))
-                out["observations"][index, k] = obs
-                out["rewards"][index, k] = reward
-                out["terminated"][index, k] = terminated
-                out["truncated"][index, k] = truncated
-                out["at_goal"][index, k] = bool(info.get("at_goal"))
-                if terminated or truncated:
-                    obs, _ = env.reset()
-                self.observations[k] = obs
+            actions = np.asarray(choose(index, observations)).reshape(count)
+            step = self.stepper.step(actions)
+            for key, value in zip(("observations", "rewards", "terminated", "truncated",
+                                   "at_goal"), step):
+                out[key][index] = value
+            observations = step[0]
         out["wall_s"] = time.monotonic() - started
         return out
 
@@ -169,8 +215,10 @@ class RayStageRunner:
         return np.concatenate(self._ray.get(calls))
 
     def step_batch(self, actions) -> Batch:
-        """Step every env with ``actions``: (M, N) ints 0..4 (or (N,) for one step). One
-        remote call per actor; an env whose episode ends is reset before its next step."""
+        """Step every env with ``actions``: (M, N) ints 0..4 (or (N,) for one step), in one
+        remote call per actor. NEXT_STEP autoreset: the step after one that ended an env's
+        episode resets it and returns the next episode's first observation (reward 0, the
+        flags False, its action ignored), in this batch or the next."""
         actions = np.asarray(actions, dtype=np.int64)
         if actions.ndim == 1:
             actions = actions[None, :]
@@ -185,7 +233,7 @@ class RayStageRunner:
     def rollout(self, policy: Callable[[np.ndarray], Sequence[int]], steps: int) -> Batch:
         """``steps`` steps of every env, each actor choosing its actions with ``policy``
         ((K, 28) observations -> K actions; pickled to the actors, so it must not hold
-        locks or open files)."""
+        locks or open files). The same NEXT_STEP autoreset as step_batch."""
         calls = [actor.rollout.remote(policy, steps) for actor in self.actors]
         return self._gather(self._ray.get(calls))
 

@@ -10,6 +10,11 @@ functions and data: no ROS, no Gymnasium, no simulator (doc/learning.md).
 - ``SpinningObstacle``, ``WaypointObstacle``: what ``moving_obstacle.py`` (stage 3) and
   ``combination_obstacle_1/2.py`` (stage 4) do to the obstacles at each of their ticks.
 
+It follows github.com/ROBOTIS-GIT/turtlebot3_machine_learning, branch ``noetic`` at commit
+5df6e0a4fbf326b0d4bf9838701090522413844c (turtlebot3_dqn/src/turtlebot3_dqn/ and nodes/). The
+ROS 2 stages (branches ``main``, ``humble`` and ``jazzy``, one tree, at
+3bce927fc2161b3df4568c6a170502dd45aff7e3) are in robotis_stages_ros2.py.
+
 Units: metres, radians (heading counter-clockwise from the robot's +x to the goal), m/s.
 """
 import math
@@ -47,14 +52,20 @@ def action_command(action: int) -> Tuple[float, float]:
     return LINEAR_SPEED, ((ACTIONS - 1) / 2 - action) * MAX_ANGULAR * 0.5
 
 
-def heading_to(goal: Sequence[float], x: float, y: float, yaw: float) -> float:
-    """The angle (rad, -pi..pi, rounded to 0.01) from the robot's heading to the goal."""
+def goal_bearing(goal: Sequence[float], x: float, y: float, yaw: float) -> float:
+    """The angle (rad, -pi..pi, unrounded) from the robot's heading (``yaw``) to the goal:
+    the bearing less the yaw, wrapped once (both ROBOTIS versions wrap it so)."""
     heading = math.atan2(goal[1] - y, goal[0] - x) - yaw
     if heading > math.pi:
         heading -= 2 * math.pi
     elif heading < -math.pi:
         heading += 2 * math.pi
-    return round(heading, 2)
+    return heading
+
+
+def heading_to(goal: Sequence[float], x: float, y: float, yaw: float) -> float:
+    """The angle (rad, -pi..pi, rounded to 0.01) from the robot's heading to the goal."""
+    return round(goal_bearing(goal, x, y, yaw), 2)
 
 
 def goal_distance(goal: Sequence[float], x: float, y: float) -> float:
@@ -68,10 +79,16 @@ class Observation(NamedTuple):
     at_goal: bool
 
 
+def scan_values(ranges: Sequence[float]) -> List[float]:
+    """A scan's ranges (m) as both ROBOTIS versions read them: +inf as 3.5, NaN as 0, a -inf
+    (closer than range_min) kept."""
+    return [NO_RETURN if r == math.inf else 0.0 if math.isnan(r) else float(r) for r in ranges]
+
+
 def observation(stage: int, ranges: Sequence[float], heading: float,
                 distance: float) -> Observation:
     """getState of ``stage`` for a scan's ``ranges`` and the rounded heading and distance."""
-    scan = [NO_RETURN if r == math.inf else 0.0 if math.isnan(r) else float(r) for r in ranges]
+    scan = scan_values(ranges)
     nearest = min(scan)
     collision = COLLISION_RANGE > nearest > 0
     if stage == 1:

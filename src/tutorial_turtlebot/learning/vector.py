@@ -15,13 +15,14 @@ answers once per batch: the main process does little more than send the actions 
 concatenate the answers, and each core runs one worker flat out.
 
 - ``autoreset_mode``: Gymnasium 1.x's ``AutoresetMode.NEXT_STEP`` by default (as
-  AsyncVectorEnv): the step after one that ended an episode (terminated or truncated) resets
-  that environment and returns its first observation, reward 0, terminated and truncated
-  False (the action given for it is ignored). ``AutoresetMode.SAME_STEP``: the environment is
+  AsyncVectorEnv, and learning.ray_actors' only mode): the step after one that ended an
+  episode (terminated or truncated) resets that environment and returns its first
+  observation, reward 0, terminated and truncated False (the action given for it is
+  ignored). ``AutoresetMode.SAME_STEP``: the environment is
   reset in the step that ended it; that step returns the new first observation and puts the
   last one in ``infos["final_obs"]`` and its info in ``infos["final_info"]``.
 - seeds: ``reset(seed=s)`` seeds environment i with ``s + i`` (a list: one seed each; None:
-  unseeded); the same seed gives the same observations.
+  unseeded); the same seed gives the same observations in every stage.
 - infos: Gymnasium's vector form (each key an array over the environments, ``"_key"`` its
   mask).
 - ``close()`` ends the workers (they also end when this process dies: their pipe closes);

@@ -9,6 +9,7 @@ a jointed link's index is its joint's.
 import math
 from typing import List, NamedTuple, Tuple
 
+from . import collision_filters
 from .bullet import pybullet
 
 Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]
@@ -166,3 +167,4 @@ class Body:
     def remove(self) -> None:
         """Take the body out of the physics for good."""
         pybullet.removeBody(self.uid, physicsClientId=self.client)
+        collision_filters.forget_body(self.client, self.uid)

@@ -13,7 +13,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import bullet_shapes, gui_window
+from . import bullet_shapes, collision_filters, gui_window
 from .bullet import pybullet, quiet_output
 from ..kinematics import Pose
 from .rendering import disable_egl, enable_egl
@@ -60,6 +60,7 @@ class WorldPhysics:
             raise RuntimeError("pybullet could not open its window")
         cid = self.client
         bullet_shapes.track(cid)
+        collision_filters.track(cid)
         self.gui = gui
         self.egl = False
         if egl and not gui:  # before any body: the plugin draws only bodies created after it
@@ -70,7 +71,8 @@ class WorldPhysics:
         # enableFileCaching 0: pybullet would keep every mesh file it ever read, for good (the
         # files written here are new for each body: nothing would be read from that cache)
         pybullet.setPhysicsEngineParameter(numSolverIterations=solver_iterations,
-                                           enableFileCaching=0, physicsClientId=cid)
+                                           enableFileCaching=0, deterministicOverlappingPairs=1,
+                                           physicsClientId=cid)
         self.world_bodies = build_world(world, cid)
         self._free_bits: List[int] = [1 << (FIRST_ROBOT_BIT + i) for i in range(MAX_ROBOTS)]
         # threads pybullet casts a batch of rays on: the hits are the same for any count; 2
@@ -80,6 +82,33 @@ class WorldPhysics:
     def step(self) -> None:
         """Advance physics by one time step."""
         pybullet.stepSimulation(physicsClientId=self.client)
+
+    def save_state(self) -> int:
+        """Keep the state of every body (poses, velocities, joints: pybullet's saveState, in
+        memory): the id to ``restore_state``, or to ``drop_state`` when no longer wanted."""
+        return pybullet.saveState(physicsClientId=self.client)
+
+    def restore_state(self, state: int) -> None:
+        """Every body back to saved ``state`` (the bodies must be those it was saved with),
+        and no contact left: the next steps are those of a world in that state built anew
+        (collision_filters.renew_contacts)."""
+        pybullet.restoreState(stateId=state, physicsClientId=self.client)
+        self.renew_contacts()
+
+    def body_ids(self) -> Tuple[int, ...]:
+        """The id of every body in the client, in pybullet's order."""
+        cid = self.client
+        return tuple(pybullet.getBodyUniqueId(i, physicsClientId=cid)
+                     for i in range(pybullet.getNumBodies(physicsClientId=cid)))
+
+    def drop_state(self, state: int) -> None:
+        """Free a saved state."""
+        pybullet.removeState(state, physicsClientId=self.client)
+
+    def renew_contacts(self) -> None:
+        """Forget every contact, and find the pairs in a new world's order from the next step
+        (after bodies were put back by hand, as restore_state does by itself)."""
+        collision_filters.renew_contacts(self.client)
 
     def set_parameters(self, time_step: float, gravity, solver: dict) -> None:
         """The step (s), gravity (m/s^2, world frame) and Bullet's solver parameters
@@ -111,6 +140,55 @@ class WorldPhysics:
                                      numThreads=self.ray_threads, physicsClientId=self.client)
         return np.array([h[2] * max_range if h[0] >= 0 else np.inf for h in hits])
 
+    def surfaces_below(self, points: np.ndarray, top: float, bottom: float,
+                       static_only: bool = True) -> np.ndarray:
+        """The z (m) of the highest surface met by a ray cast straight down from z ``top`` to
+        z ``bottom`` at each world (x, y) of the (N, 2) ``points``; nan where none is met.
+        Only the world's bodies count (no robot), with ``static_only`` only static ones (mass
+        0: a movable model is passed through, it is no floor). Every hit of a ray counts
+        (Bullet's all-hits ray test), except one at its very start (a ray that starts inside
+        a convex solid may report one there)."""
+        cid = self.client
+        starts = [(float(x), float(y), top) for x, y in points]
+        ends = [(float(x), float(y), bottom) for x, y in points]
+        highest = np.full(len(starts), np.nan)
+        static: Dict[Tuple[int, int], bool] = {}
+        for number in range(MAX_RAY_HITS):
+            hits = pybullet.rayTestBatch(starts, ends, collisionFilterMask=WORLD_COLLISION_GROUP,
+                                         reportHitNumber=number, physicsClientId=cid)
+            if all(hit[0] < 0 for hit in hits):
+                break
+            for i, (uid, link, fraction, position, _) in enumerate(hits):
+                if uid < 0 or fraction * (top - bottom) < RAY_START_TOLERANCE:
+                    continue
+                if static_only and (uid, link) not in static:
+                    static[uid, link] = pybullet.getDynamicsInfo(
+                        uid, link, physicsClientId=cid)[0] == 0.0
+                if (not static_only or static[uid, link]) and not position[2] <= highest[i]:
+                    highest[i] = position[2]
+        return highest
+
+    def overlaps(self, body: int, min_depth: float) -> List[Tuple[int, int, float, float]]:
+        """(body id, link index, depth m, top z m) of each collider that ``body`` penetrates by
+        more than ``min_depth``, deepest first: Bullet's closest points between ``body`` and
+        every collider whose bounding box meets its own; top is the collider's bounding box's."""
+        cid = self.client
+        boxes = [pybullet.getAABB(body, link, physicsClientId=cid)
+                 for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid))]
+        low = np.min([box[0] for box in boxes], axis=0).tolist()
+        high = np.max([box[1] for box in boxes], axis=0).tolist()
+        found = []
+        for uid, link in pybullet.getOverlappingObjects(low, high, physicsClientId=cid) or ():
+            if uid == body:
+                continue
+            points = pybullet.getClosestPoints(body, uid, 0.0, linkIndexB=link,
+                                               physicsClientId=cid)
+            depth = max((-point[8] for point in points), default=0.0)
+            if depth > min_depth:
+                top = pybullet.getAABB(uid, link, physicsClientId=cid)[1][2]
+                found.append((uid, link, depth, top))
+        return sorted(found, key=lambda overlap: -overlap[2])
+
     def close(self) -> None:
         """Disconnect the pybullet client."""
         if self.client is not None:
@@ -118,6 +196,7 @@ class WorldPhysics:
                 disable_egl(self.client)  # client ids are reused after a disconnect
                 pybullet.disconnect(physicsClientId=self.client)
             bullet_shapes.forget_client(self.client)
+            collision_filters.forget_client(self.client)
             self.client = None
 
 
@@ -165,8 +244,8 @@ class RobotBody:
             robot = load_urdf(cid, self._bullet_urdf)
             pool.remember([robot])
         for link in range(-1, pybullet.getNumJoints(robot, physicsClientId=cid)):
-            pybullet.setCollisionFilterGroupMask(robot, link, self.collision_bit,
-                                                 ALL_COLLISION_GROUPS, physicsClientId=cid)
+            collision_filters.set_filter(cid, robot, link, self.collision_bit,
+                                         ALL_COLLISION_GROUPS)
             pybullet.changeDynamics(robot, link, lateralFriction=BODY_FRICTION,
                                     spinningFriction=0.0, rollingFriction=0.0, restitution=0.0,
                                     linearDamping=0.0, angularDamping=0.0,
@@ -249,9 +328,8 @@ class RobotBody:
                 pybullet.changeDynamics(self.robot, j, frictionAnchor=int(anchored),
                                         physicsClientId=cid)
                 if anchored:
-                    pybullet.setCollisionFilterGroupMask(self.robot, j, self.collision_bit,
-                                                         ALL_COLLISION_GROUPS,
-                                                         physicsClientId=cid)
+                    collision_filters.set_filter(cid, self.robot, j, self.collision_bit,
+                                                 ALL_COLLISION_GROUPS)
             self._anchored = anchored
 
     def reset_robot(self) -> None:
@@ -262,6 +340,11 @@ class RobotBody:
             pybullet.resetJointState(self.robot, j, 0.0, 0.0, physicsClientId=cid)
         # Velocity 0 with the wheel torque (brake released: its held angles are gone) until
         # the drive's next control tick brakes.
+        self.restart_wheels()
+
+    def restart_wheels(self) -> None:
+        """The wheels' motors as ``reset_robot`` leaves them, for a body whose state was
+        restored (WorldPhysics.restore_state): velocity 0 with the wheel torque, brake off."""
         self.set_wheel_velocities(0.0, 0.0)
 
     def place(self, pose: Pose) -> None:
@@ -277,6 +360,7 @@ class RobotBody:
         old, cid = self.robot, self.client
         self.robot = self._load()
         pybullet.removeBody(old, physicsClientId=cid)
+        collision_filters.forget_body(cid, old)
         for j in self.wheels:
             pybullet.changeDynamics(self.robot, j, lateralFriction=WHEEL_FRICTION,
                                     physicsClientId=cid)
@@ -288,6 +372,7 @@ class RobotBody:
         pool = body_pool(self.physics)
         if not pool.park(self._pool_key(), [self.robot]):
             pybullet.removeBody(self.robot, physicsClientId=self.client)
+            collision_filters.forget_body(self.client, self.robot)
             pool.forget([self.robot])
         self.physics.give_back_robot_bit(self.collision_bit)
 

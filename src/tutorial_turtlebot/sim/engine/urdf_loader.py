@@ -12,6 +12,7 @@ import tempfile
 
 from ...errors import UserError
 from ..files.urdf_meshes import textured_urdf
+from . import collision_filters
 from .bodies import Body
 from .bullet import pybullet, quiet_output
 from .world_bullet import MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK
@@ -53,8 +54,8 @@ def load_movable(client: int, urdf: str) -> Body:
 def setup_movable(client: int, body: int) -> None:
     """The set-up of ``load_movable``, of a body already loaded (or taken from the pool)."""
     for link in range(-1, pybullet.getNumJoints(body, physicsClientId=client)):
-        pybullet.setCollisionFilterGroupMask(body, link, MOVABLE_COLLISION_GROUP,
-                                             MOVABLE_COLLISION_MASK, physicsClientId=client)
+        collision_filters.set_filter(client, body, link, MOVABLE_COLLISION_GROUP,
+                                     MOVABLE_COLLISION_MASK)
         pybullet.changeDynamics(body, link, linearDamping=0.0, angularDamping=0.0,  # none in Gazebo
                                 activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
                                 physicsClientId=client)

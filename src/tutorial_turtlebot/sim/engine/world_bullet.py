@@ -27,7 +27,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import bullet_shapes
+from . import bullet_shapes, collision_filters
 from ..files import mesh_cache
 from .bullet import pybullet
 from .rendering import (MAX_TEXTURE_PIXELS, note_textures, texture_budget,
@@ -76,6 +76,7 @@ def build_world(world: World, client_id: int) -> Dict[str, int]:
     except BaseException:   # a spawn that cannot be built leaves no body behind
         for body in set(bodies.values()):
             pybullet.removeBody(body, physicsClientId=client_id)
+            collision_filters.forget_body(client_id, body)
         raise
     return bodies
 
@@ -158,9 +159,8 @@ def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> i
                             restitution=WORLD_RESTITUTION, linearDamping=0.0, angularDamping=0.0,
                             activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
                             physicsClientId=cid)
-    pybullet.setCollisionFilterGroupMask(body, -1, MOVABLE_COLLISION_GROUP,
-                                         MOVABLE_COLLISION_MASK if collisions else 0,
-                                         physicsClientId=cid)
+    collision_filters.set_filter(cid, body, -1, MOVABLE_COLLISION_GROUP,
+                                 MOVABLE_COLLISION_MASK if collisions else 0)
     return body
 
 
@@ -259,8 +259,8 @@ def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
     if body < 0:
         raise WorldError("%s: pybullet could not build %s" % (shape.name, shape.kind))
     for link in range(-1, len(links)) if collide else ():
-        pybullet.setCollisionFilterGroupMask(body, link, WORLD_COLLISION_GROUP,
-                                             WORLD_COLLISION_MASK, physicsClientId=cid)
+        collision_filters.set_filter(cid, body, link, WORLD_COLLISION_GROUP,
+                                     WORLD_COLLISION_MASK)
         pybullet.changeDynamics(body, link, lateralFriction=WORLD_FRICTION,
                                 restitution=WORLD_RESTITUTION, physicsClientId=cid)
     if _static_rigid(shape, collide, links):   # asleep: Bullet skips its bounds every step
@@ -521,7 +521,7 @@ class BodyPool:
                 body, (PARK_SPACING * body, 0.0, -PARK_DEPTH), (0, 0, 0, 1), physicsClientId=cid)
             pybullet.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
             for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
-                pybullet.setCollisionFilterGroupMask(body, link, 0, 0, physicsClientId=cid)
+                collision_filters.set_filter(cid, body, link, 0, 0)
                 pybullet.changeDynamics(body, link, activationState=(
                     pybullet.ACTIVATION_STATE_ENABLE_SLEEPING | pybullet.ACTIVATION_STATE_SLEEP),
                     physicsClientId=cid)
@@ -540,6 +540,7 @@ class BodyPool:
             del self._parked[key]
         for body in bodies:
             pybullet.removeBody(body, physicsClientId=self.client)
+            collision_filters.forget_body(self.client, body)
         self.forget(bodies)
         self.parked_bodies -= len(bodies)
 
@@ -616,11 +617,11 @@ def place_world_bodies(world: World, bodies: Dict[str, int], cid: int) -> None:
         pybullet.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
         for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
             if shape.static and shape.collision:
-                pybullet.setCollisionFilterGroupMask(body, link, WORLD_COLLISION_GROUP,
-                                                     WORLD_COLLISION_MASK, physicsClientId=cid)
+                collision_filters.set_filter(cid, body, link, WORLD_COLLISION_GROUP,
+                                             WORLD_COLLISION_MASK)
             elif not shape.static:
                 has_collision = any(s.collision and s.link == shape.link
                                     for s in world.collisions)
-                pybullet.setCollisionFilterGroupMask(
-                    body, link, MOVABLE_COLLISION_GROUP,
-                    MOVABLE_COLLISION_MASK if has_collision else 0, physicsClientId=cid)
+                collision_filters.set_filter(
+                    cid, body, link, MOVABLE_COLLISION_GROUP,
+                    MOVABLE_COLLISION_MASK if has_collision else 0)

@@ -144,6 +144,20 @@ class Simulation:
         if config.gui:
             gui_window.look_at(self.physics.client, self.spawn[:3], self.spawn[3])
         self._reset_schedules()
+        self._start: Optional[Tuple[int, tuple]] = None   # (saved state, models' layout)
+        self._keep_start()
+
+    def _keep_start(self) -> None:
+        """Save the physics as it stands, with no contact, as what resets go back to."""
+        self.physics.renew_contacts()
+        if self._start is not None:
+            self.physics.drop_state(self._start[0])
+        self._start = (self.physics.save_state(), self._layout())
+
+    def _layout(self) -> tuple:
+        """The bodies of the physics and of each model: a saved state fits while this is
+        unchanged (no body added, removed or parked since)."""
+        return self.physics.body_ids(), self.models.layout()
 
     def _spawn(self, world_spawn) -> Tuple[float, float, float, float]:
         default = world_spawn if world_spawn else (0.0, 0.0, 0.0)
@@ -260,8 +274,20 @@ class Simulation:
 
     def reset_world(self) -> None:
         """Every model (robots, the world's movable models, spawned ones) back to its spawn
-        pose at rest; time runs on (Gazebo's reset_world)."""
-        self.models.reset()
+        pose at rest; time runs on (Gazebo's reset_world).
+
+        Exact: the same commands then give the same trajectory, to the last bit, as a world
+        built anew with the same models. The physics goes back to the state saved when the
+        world was built, contacts and all (WorldPhysics.restore_state); after a spawn, a delete
+        or a rebuild since then, every model is put at its spawn pose instead, every contact
+        dropped, and that state saved for the next resets."""
+        self.models.repair()
+        if self._start is not None and self._start[1] == self._layout():
+            self.physics.restore_state(self._start[0])
+            self.models.restarted()
+        else:
+            self.models.reset()
+            self._keep_start()
         for robot in self._robot_list:
             robot.reset_state(self.time_ns)
         self._reset_schedules()
@@ -287,4 +313,5 @@ class Simulation:
 
     def close(self) -> None:
         """Release the physics client."""
+        self._start = None
         self.physics.close()

@@ -184,6 +184,19 @@ class WorldModel:
         for part in self.parts:
             part.body.zero_joints()
 
+    def restarted(self) -> None:
+        """The bodies were put back in the state saved at the start (WorldPhysics.restore_state):
+        what the model keeps beside its bodies starts over too."""
+        self._pose = self.spawn_pose
+
+    def repair(self) -> None:
+        """Rebuild the model if its physics state is no longer finite (``sound``)."""
+        self._repaired()
+
+    def body_ids(self) -> Tuple[int, ...]:
+        """The pybullet ids of the model's bodies, in order."""
+        return tuple(part.body.uid for part in self.parts)
+
     def remove(self) -> None:
         """Take the model's bodies out of the physics."""
         for part in self.parts:
@@ -263,6 +276,9 @@ class RobotModel(WorldModel):
         self._repaired()
         self.robot_body.reset_robot()
 
+    def restarted(self) -> None:
+        self.robot_body.restart_wheels()
+
     def remove(self) -> None:
         self.robot_body.remove()
         self.parts = []
@@ -317,6 +333,21 @@ class ModelRegistry:
         """Every model back to its spawn pose, at rest."""
         for model in self._models.values():
             model.reset()
+
+    def repair(self) -> None:
+        """Rebuild every model whose physics state is no longer finite."""
+        for model in self._models.values():
+            model.repair()
+
+    def restarted(self) -> None:
+        """Every model's bodies were put back in the state saved at the start."""
+        for model in self._models.values():
+            model.restarted()
+
+    def layout(self) -> Tuple[Tuple[str, Tuple[int, ...]], ...]:
+        """(name, body ids) of every model in order: a saved state fits the world while this
+        is unchanged (no model spawned, deleted or rebuilt since)."""
+        return tuple((name, model.body_ids()) for name, model in self._models.items())
 
     def frame(self, name: str) -> Tuple[Pose, Twist]:
         """Pose and twist of a reference frame: a model name or a scoped "model::link";

@@ -47,9 +47,7 @@ READINGS = {
 }
 # pybullet build -> digest (see pybullet_build)
 PINNED = {
-    "PyPI wheel": "8da7cf2909c4ef705fa0864af30308000a5083c49ecc832057506f4ec82e957d",
-    "built on debian 13, Python 3.13": (
-        "3f3bb934a01cdfad3ec21c1ff3b97714b19f1019a15aefcdab7ecd4bb164d09f"),
+    "PyPI wheel": "f7615ef44f1030ec4c441ef980db121d62da9a90742d647339ad2f8147b94421",
 }
 REFERENCE = os.path.join(unit_paths.DATA,
                          "trajectory_reference.json")

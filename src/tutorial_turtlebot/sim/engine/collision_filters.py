@@ -1,0 +1,64 @@
+"""Every collider's collision filter, kept per pybullet client in the order it was first set,
+so that a reset can drop every contact and leave the broadphase as a newly built world has it.
+
+Bullet keeps the contacts of two colliders (their points, and the impulses that warm-start the
+next step's solver) for as long as their bounding boxes overlap, and carries them over a
+teleport: a world put back where it started then steps differently from a new one (a spinning
+obstacle of learning stage 3 pressed 16 remembered points into the floor). pybullet has one call
+that drops them: setting a collider's filter gives it a new broadphase entry, without the pairs
+and contacts of the old one. ``renew_contacts`` does that for every collider in the order in
+which they were first given a filter, which is the order a world built anew gives them: no
+contact is left, and the pairs are found in a new world's order at the next step.
+
+Every filter of the simulator is set through ``set_filter`` (the engine's builders, the robots,
+the body pool), and a body's removal is told with ``forget_body``. A collider's filter is a
+(group, mask) pair of bits (world_bullet's collision groups).
+"""
+from collections import OrderedDict
+from typing import Dict, Tuple
+
+from .bullet import pybullet
+
+Collider = Tuple[int, int]     # (body id, link index; -1 for the base)
+
+_clients: Dict[int, "OrderedDict[Collider, Tuple[int, int]]"] = {}
+
+
+def track(client_id: int) -> None:
+    """Keep the filters of ``client_id``, newly connected, from now on."""
+    _clients[client_id] = OrderedDict()
+
+
+def forget_client(client_id: int) -> None:
+    """``client_id`` is disconnected."""
+    _clients.pop(client_id, None)
+
+
+def set_filter(client_id: int, body: int, link: int, group: int, mask: int) -> None:
+    """Give collider (``body``, ``link``) the collision ``group`` and ``mask`` (pybullet's
+    setCollisionFilterGroupMask, which also drops the collider's contacts), and remember it:
+    a collider keeps the place of the first filter it was given."""
+    pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=client_id)
+    filters = _clients.get(client_id)
+    if filters is not None:
+        filters[(body, link)] = (group, mask)
+
+
+def forget_body(client_id: int, body: int) -> None:
+    """``body`` was removed from ``client_id``: its colliders are gone."""
+    filters = _clients.get(client_id)
+    if filters is not None:
+        for collider in [c for c in filters if c[0] == body]:
+            del filters[collider]
+
+
+def renew_contacts(client_id: int) -> None:
+    """Drop every contact of ``client_id``: each collider gets its filter again, in the order of
+    their first filters (the broadphase's entries then stand in the order of a new world)."""
+    for (body, link), (group, mask) in _clients.get(client_id, {}).items():
+        pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=client_id)
+
+
+def colliders(client_id: int) -> Dict[Collider, Tuple[int, int]]:
+    """collider -> (group, mask) of ``client_id``, in renewal order (a copy)."""
+    return OrderedDict(_clients.get(client_id, {}))
