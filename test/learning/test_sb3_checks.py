@@ -3,14 +3,17 @@ a warning, for every stage of both variants (ROBOTIS' noetic and ROS 2 stages), 
 ``make_vec_env`` of an env id (which asks for render_mode "rgb_array") warns of nothing.
 
 Not a unit test: stable-baselines3 comes with the train extra (torch, about 800 MB), which it
-installs on first use (bash tools/install_extra.sh train), and skips, with one line, only when
-PyPI is unreachable. Run it on its own:
+installs on first use (bash tools/install_extra.sh train) where pip finds torch's CPU build
+(pip's find-links); it skips, with one line, where pip would take PyPI's CUDA build instead
+(several GB: the Debian 13 root of tools/try_platform.sh) and where PyPI is unreachable. Run it
+on its own:
 
     source catkin_ws/devel/setup.bash && python3 -m pytest test/learning/test_sb3_checks.py
 """
 import importlib
 import os
 import subprocess
+import sys
 import warnings
 
 import pytest
@@ -25,6 +28,12 @@ def sb3():
         return importlib.import_module("stable_baselines3")
     except ImportError:
         pass
+    cpu_build = subprocess.run([sys.executable, "-m", "pip", "install", "--dry-run", "--no-deps",
+                                "--no-index", "torch==2.13.0+cpu"],
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if cpu_build.returncode != 0:
+        pytest.skip("pip finds no CPU build of torch 2.13.0 here (only PyPI's CUDA build, "
+                    "several GB): the train extra is not installed for a test")
     done = subprocess.run(["bash", os.path.join(ROOT, "tools", "install_extra.sh"), "train"],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                           timeout=1800)
