@@ -48,6 +48,8 @@ READINGS = {
 # pybullet build -> digest (see pybullet_build)
 PINNED = {
     "PyPI wheel": "f7615ef44f1030ec4c441ef980db121d62da9a90742d647339ad2f8147b94421",
+    "built on debian 13, Python 3.13": (
+        "2f7df3254e1463df727edcd8344150cb6e74a37e0ce6109552f0c3eef55acd5a"),
 }
 REFERENCE = os.path.join(unit_paths.DATA,
                          "trajectory_reference.json")
