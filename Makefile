@@ -2,6 +2,7 @@
 #   make demo   set up, then the TurtleBot3 sim in turtlebot3_world with keyboard teleop
 #   make test   set up, then every test: unit (pytest, no master) and rostest (the real sim)
 #   make bench  set up, then the benchmark table
+#   make corpus set up, then public Gazebo worlds through the sim (not in make test)
 #   make unit / make rostest   the two halves of make test
 #   make plan   what the set-up would install here (nothing is installed)
 # Each target does its own set-up first (tools/setup.sh, idempotent); the test targets also
@@ -36,6 +37,13 @@ rostest: setup
 
 bench: setup
 	@$(ROS_ENV) && python3 bench/run_bench.py
+
+# make corpus: not part of make test. Public Gazebo worlds through the real sim, one table
+# (bench/corpus.py); the corpus lies outside the repository (tools/corpus/fetch_corpus.py
+# makes it). CORPUS_ARGS="--only NAME,NAME" runs some of them.
+.PHONY: corpus
+corpus: setup
+	@$(ROS_ENV) && python3 bench/corpus.py $(CORPUS_ARGS)
 
 # make train: not part of make test. Installs the train extra on first use (stable-baselines3,
 # a CPU build of torch, matplotlib: tools/install_extra.sh), then trains DQN on learning stage 1

@@ -43,6 +43,14 @@ Measured (Burger in turtlebot3_world unless said):
                     built-in world's; CPU s per sim s of Simulation.step (physics alone; and
                     with every sensor computed), no ROS, the two worlds stepped in turns in one
                     process, and their ratio
+  meshcamera        the Waffle Pi's camera (640 x 480, 30 Hz) in meshworld's generated world
+                    beside the built-in turtlebot3_world: CPU ms per image without ROS, the
+                    two worlds drawn in turns in one process, their ratio, and the generated
+                    world's again with every body drawn (no view culling: engine/view_culling);
+                    the sim node in the generated world at real time with the camera
+                    subscribed from another process: achieved factor, images per sim second
+                    (frames the loop could not draw in time are skipped), sim CPU; floor:
+                    the same with only /odom subscribed (no image drawn), in turns with it
   multi             three Burgers in turtlebot3_house (multi_turtlebot3.launch) with every
                     sensor of each and /tf subscribed: sim CPU at real time, factor as fast as
                     possible; 1, 2, 4, 8 Burgers spawned into the empty world (the sim node
@@ -69,14 +77,16 @@ Measured (Burger in turtlebot3_world unless said):
                     default groups: it takes 15 to 20 wall minutes)
 
   hostile           bench/hostile_soak.py: the hostile requests that once killed, froze or
-                    choked the sim, replayed for 10 wall minutes against one sim at real time:
-                    alive at the end, the longest wall gap between two /clock messages, sim
-                    RSS and CPU per sim second at the start and the end (not in the default
-                    groups: it takes about 12 minutes)
+                    choked the sim, replayed for 20 wall minutes against one sim at real time
+                    beside three processes flooding /gazebo/set_model_state and a /scan
+                    client: alive at the end, the longest wall gap between two /clock
+                    messages, sim RSS, threads and CPU per sim second at the start and the
+                    end, the client's /scan rate (not in the default groups: it takes about
+                    22 minutes)
 
 ``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, jitter, fast, world,
-subscribers, camera, render, meshes, meshworld, multi, learning, soak, hostile); the default is
-all of them but soak and hostile.
+subscribers, camera, render, meshes, meshworld, meshcamera, multi, learning, soak, hostile); the
+default is all of them but soak and hostile.
 """
 import argparse
 import os
@@ -93,7 +103,7 @@ MESH_MODELS = os.path.abspath(os.path.join(FIXTURES, "gazebo_models"))
 sys.path.insert(0, os.path.join(HERE, os.pardir, "src"))
 sys.path.insert(0, os.path.join(HERE, os.pardir, "test"))
 from process_helpers import (cpu_seconds, free_port, rss_kb, signal_process,  # noqa: E402,F401
-                             stop_process, wait_for)
+                             stop_process, wait_for, node_on_master)
 
 STOP_WAIT = 15.0   # wall s a process has to end after SIGINT before SIGTERM and SIGKILL
 
@@ -114,6 +124,8 @@ TARGETS = {
     "stage": ">= 100/s",
     "meshworld_second": "<= 2",
     "meshworld_physics": "<= 1.3",
+    "meshcamera_ratio": "<= 1.5",
+    "meshcamera_rtf": ">= 0.95",
     "learning_bound": ">= 0.85",
     "learning_vector": ">= 1.7",
 }
@@ -158,21 +170,7 @@ class SimRun:
 
     def _find_sim(self):
         """The pid of the node named gazebo on this run's master (None if none yet)."""
-        for pid in os.listdir("/proc"):
-            if not pid.isdigit():
-                continue
-            try:
-                with open("/proc/%s/cmdline" % pid, "rb") as f:
-                    cmd = f.read().split(b"\0")
-                with open("/proc/%s/environ" % pid, "rb") as f:
-                    env = f.read().split(b"\0")
-            except OSError:
-                continue
-            master = [e for e in env if e.startswith(b"ROS_MASTER_URI=")]
-            if (b"__name:=gazebo" in cmd and master
-                    and master[0].rstrip(b"/").endswith(b":%d" % self.port)):
-                return int(pid)
-        return None
+        return node_on_master("gazebo", self.port)
 
     def stop(self):
         """SIGINT to every process group at once (roslaunch and the helpers end together),
@@ -247,17 +245,19 @@ def read_part_times(path):
 
 
 def measure_running(rtf, topics, seconds=8.0, warmup=3.0, model="burger", mesh_world=False,
-                    parts=None):
+                    parts=None, world=None, world_env=None):
     """(achieved factor, sim CPU % of one core, sim RSS MB, messages per sim second) with
-    ``topics`` subscribed; ``mesh_world``: in the mesh turtlebot3_world. ``parts``: a dict
-    filled with the loop's ms per sim second by part over the same window."""
+    ``topics`` subscribed; ``mesh_world``: in the mesh turtlebot3_world; ``world``: in that
+    world file, with ``world_env`` (GAZEBO_MODEL_PATH ...). ``parts``: a dict filled with the
+    loop's ms per sim second by part over the same window."""
     import tempfile
     rate = ["real_time_factor:=%g" % rtf]
     parts_file = tempfile.NamedTemporaryFile(prefix="bench_parts_", delete=False).name
     env = {"TUTORIAL_TURTLEBOT_PART_TIMES": parts_file}
     run = (SimRun(model=model, **dict(mesh_world_run(rate), env=dict(
         mesh_world_run(rate)["env"], **env))) if mesh_world
-           else SimRun(rate, model=model, env=env))
+           else SimRun(rate, model=model, world=world, env=dict(world_env or {}, **env))
+           if world is not None else SimRun(rate, model=model, env=env))
     try:
         run.start()
         subs = run.start_helper("subscribers.py", *topics)
@@ -687,7 +687,7 @@ def median(values):
 
 
 GROUPS = ("startup", "realtime", "jitter", "fast", "world", "subscribers", "camera", "render",
-          "meshes", "meshworld", "multi", "learning")
+          "meshes", "meshworld", "meshcamera", "multi", "learning")
 EXTRA_GROUPS = ("soak", "hostile")   # long: run only when named in --only
 
 
@@ -704,9 +704,9 @@ def measure_soak():
     return tuple(float(v) for v in found.groups())
 
 
-def measure_hostile(minutes=10.0):
+def measure_hostile(minutes=20.0):
     """bench/hostile_soak.py's RESULT line: {gap, rss_start, rss_end, cpu_start, cpu_end,
-    alive}."""
+    alive, rss_idle, rounds, threads_start, threads_end, scan_hz}."""
     out = subprocess.run([sys.executable, os.path.join(HERE, "hostile_soak.py"), "--minutes",
                           str(minutes)], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                          text=True, check=False).stdout
@@ -718,6 +718,8 @@ def measure_hostile(minutes=10.0):
     result = dict(zip(keys, (float(v) for v in fields[:5])))
     result["alive"] = fields[5] == "alive"
     result["rss_idle"], result["rounds"] = float(fields[6]), int(fields[7])
+    result["threads_start"], result["threads_end"] = int(fields[8]), int(fields[9])
+    result["scan_hz"] = float(fields[10])
     return result
 
 
@@ -727,7 +729,7 @@ def main():
     parser.add_argument("--runs", type=int, default=3, help="runs per figure (median)")
     parser.add_argument("--only", default=",".join(GROUPS),
                         help="comma-separated groups of rows to run (default: all but "
-                        "soak and hostile, which take 15 to 20 and 12 minutes): " + ", ".join(GROUPS + EXTRA_GROUPS))
+                        "soak and hostile, which take 15 to 20 and 22 minutes): " + ", ".join(GROUPS + EXTRA_GROUPS))
     args = parser.parse_args()
     only = [g.strip() for g in args.only.split(",") if g.strip()]
     unknown = [g for g in only if g not in GROUPS + EXTRA_GROUPS]
@@ -835,6 +837,8 @@ def main():
         mesh_rows(args.runs, row)
     if "meshworld" in only:
         mesh_world_rows(args.runs, row)
+    if "meshcamera" in only:
+        mesh_camera_rows(args.runs, row)
     if "multi" in only:
         multi_rows(args.runs, row)
     if "learning" in only:
@@ -846,7 +850,7 @@ def main():
         row("soak: RSS growth over the last third", "%.2f" % growth, "MB", "< 2 MB")
     if "hostile" in only:   # one run: it is long
         hostile = measure_hostile()
-        row("hostile soak, 10 wall min: the sim alive at the end", "yes" if hostile["alive"]
+        row("hostile soak, 20 wall min: the sim alive at the end", "yes" if hostile["alive"]
             else "NO", "", "yes")
         row("hostile soak: longest wall time between two /clock", "%.2f" % hostile["gap"], "s",
             "<= 2 s")
@@ -855,6 +859,10 @@ def main():
             "end <= first round + 50 MB")
         row("hostile soak: sim CPU s per sim s at the start / at the end", "%.3f / %.3f"
             % (hostile["cpu_start"], hostile["cpu_end"]), "", "end <= start x 1.1")
+        row("hostile soak: sim threads after a first round / at the end", "%d / %d"
+            % (hostile["threads_start"], hostile["threads_end"]), "", "end <= first round + 10")
+        row("hostile soak: a client's /scan rate", "%.2f" % hostile["scan_hz"], "Hz of sim time",
+            ">= 4.75 (5 published)")
     print("(%.0f s; load average now %s)" % (time.time() - started,
                                              " ".join("%.2f" % v for v in os.getloadavg())),
           flush=True)
@@ -955,6 +963,76 @@ def mesh_world_rows(runs, row):
         row("  generated mesh world / built-in world", "%.2f" % median(
             [c[(world, sensors)] / c[("turtlebot3_world", sensors)] for c in costs]), "x",
             TARGETS["meshworld_physics"] if not sensors else "")
+
+
+def camera_costs(world, models, rounds=8, images=4):
+    """{key: CPU ms per image} of the Waffle Pi's camera without ROS, in turtlebot3_world
+    ("builtin"), in ``world`` ("generated") and in ``world`` with every body drawn ("whole":
+    no view culling), each the median of ``rounds`` rounds of ``images`` images; the three
+    drawn in turns in this process (its CPU time: llvmpipe's threads are in it)."""
+    from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
+    os.environ["GAZEBO_MODEL_PATH"] = models
+    sims = {"builtin": Simulation(SimConfig(model="waffle_pi", world="turtlebot3_world")),
+            "generated": Simulation(SimConfig(model="waffle_pi", world=world))}
+    camera = sims["generated"].robot.camera
+    culling = camera.view_culling
+    costs = {"builtin": [], "generated": [], "whole": []}
+    try:
+        for sim in sims.values():
+            sim.robot.camera_image()          # shaders compiled, textures loaded
+        for _ in range(rounds):
+            for key in costs:
+                sim = sims["builtin" if key == "builtin" else "generated"]
+                camera.view_culling = None if key == "whole" else culling
+                t0 = time.process_time()
+                for _ in range(images):
+                    sim.robot.camera_image()
+                costs[key].append(1000.0 * (time.process_time() - t0) / images)
+    finally:
+        camera.view_culling = culling
+        for sim in sims.values():
+            sim.close()
+    return {key: median(values) for key, values in costs.items()}
+
+
+def mesh_camera_rows(runs, row):
+    """The Waffle Pi's camera in the generated world beside turtlebot3_world: CPU per image
+    without ROS (in turns), and the sim node at real time with the camera subscribed."""
+    import shutil
+    import tempfile
+    world, models = generated_mesh_world()
+    home = tempfile.mkdtemp(prefix="bench_ros_home_")
+    old_home = os.environ.get("ROS_HOME")
+    os.environ["ROS_HOME"] = home
+    try:
+        costs = [camera_costs(world, models) for _ in range(runs)]
+        world_env = {"GAZEBO_MODEL_PATH": models, "ROS_HOME": home}
+        running, floor = [], []
+        for _ in range(runs):    # with the camera subscribed, and without, in turns
+            running.append(measure_running(1.0, ["/camera/rgb/image_raw"], model="waffle_pi",
+                                           world=world, world_env=world_env))
+            floor.append(measure_running(1.0, ["/odom"], model="waffle_pi", world=world,
+                                         world_env=world_env))
+    finally:
+        if old_home is None:
+            os.environ.pop("ROS_HOME", None)
+        else:
+            os.environ["ROS_HOME"] = old_home
+        shutil.rmtree(home, ignore_errors=True)
+    row("Waffle Pi camera, CPU per image, no ROS: turtlebot3_world / generated world",
+        "%.1f / %.1f" % (median([c["builtin"] for c in costs]),
+                         median([c["generated"] for c in costs])), "ms")
+    row("  generated world / turtlebot3_world", "%.2f" % median(
+        [c["generated"] / c["builtin"] for c in costs]), "x", TARGETS["meshcamera_ratio"])
+    row("  generated world with every body drawn (no view culling)",
+        "%.1f" % median([c["whole"] for c in costs]), "ms")
+    row("Waffle Pi camera subscribed in the generated world, real time: achieved factor",
+        "%.2f" % median([r[0] for r in running]), "x", TARGETS["meshcamera_rtf"])
+    row("  the same: images per sim second (30 declared)",
+        "%.1f" % median([r[3] for r in running]), "/s")
+    row("  the same: sim CPU", "%.0f" % median([r[1] for r in running]), "% core")
+    row("  floor: the same, only /odom subscribed (no image drawn): achieved factor",
+        "%.2f" % median([r[0] for r in floor]), "x")
 
 
 def multi_rows(runs, row):

@@ -125,3 +125,24 @@ def rss_kb(pid="self"):
                 return int(line.split()[1])
     return None
 
+
+
+def node_on_master(name: str, port: int):
+    """The pid of the process running ROS node ``name`` (its ``__name:=`` argument) on the
+    master at local ``port`` (its ROS_MASTER_URI in its environment), None if there is none."""
+    wanted = b"__name:=" + name.encode()
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit():
+            continue
+        try:
+            with open("/proc/%s/cmdline" % pid, "rb") as f:
+                cmd = f.read().split(b"\0")
+            with open("/proc/%s/environ" % pid, "rb") as f:
+                env = f.read().split(b"\0")
+        except OSError:
+            continue
+        master = [e for e in env if e.startswith(b"ROS_MASTER_URI=")]
+        if (wanted in cmd and master
+                and master[0].rstrip(b"/").endswith(b":%d" % port)):
+            return int(pid)
+    return None

@@ -29,7 +29,8 @@ import rosgraph
 import rosgraph.masterapi
 import rospy
 import rostest
-from gazebo_msgs.srv import GetPhysicsProperties, GetWorldProperties, SetPhysicsProperties
+from gazebo_msgs.srv import (GetModelState, GetPhysicsProperties, GetWorldProperties,
+                             SetPhysicsProperties)
 from gazebo_msgs.srv import SpawnModel
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
@@ -209,6 +210,33 @@ class HostileClientsTest(unittest.TestCase):
         rospy.loginfo("get_world_properties: %.3f s at the slowest pace, %.3f s paused",
                       slow, paused)
 
+    # --- malformed requests -------------------------------------------------------------------
+
+    def test_malformed_requests_are_one_line_per_client_never_a_traceback(self):
+        """Bodies that do not deserialize (a string length of 0xffffffff) and bodies cut short,
+        30 of each from two clients: the sim (a sim of its own: its stderr is read) writes one
+        warning per client and no traceback, and answers a good request after them."""
+        sim = OwnSim()
+        try:
+            self.assertTrue(wait_for(lambda: sim.service("get_model_state") is not None,
+                                     WAIT), "the sim's services did not come up")
+            address = sim.service("get_model_state")
+            # GetModelState's request begins with a string: its length 0xffffffff
+            bad_length = struct.pack("<I", 8) + struct.pack("<I", 0xffffffff) + b"abcd"
+            for client, body in (("/garbage", bad_length), ("/cut_short", b"\x64\0\0\0abc")):
+                for _ in range(30):
+                    send_raw_request(address, "/gazebo/get_model_state", GetModelState, client,
+                                     body)
+            self.assertEqual(sim.call("get_world_properties", GetWorldProperties), b"\x01")
+            time.sleep(1.0)
+        finally:
+            sim.close()
+        err = sim.sim.stderr
+        self.assertNotIn("Traceback", err)
+        self.assertEqual(err.count("malformed request from /garbage"), 1, err[-2000:])
+        self.assertLessEqual(err.count("from /cut_short"), 1, err[-2000:])
+        self.assertNotIn("[ERROR]", err)     # (rospy's "incoming connection failed" line)
+
     # --- Ctrl-C ----------------------------------------------------------------------------------
 
     def test_ctrl_c_in_every_state(self):
@@ -307,6 +335,23 @@ class OwnSim:
         if self.master.poll() is None:
             self.master.terminate()
             self.master.wait(10.0)
+
+
+def send_raw_request(address, name, srv_type, callerid, body):
+    """A valid handshake for service ``name``, then ``body`` as the request's bytes; the
+    connection is closed after at most 1 s of waiting for an answer."""
+    from io import BytesIO
+    from rosgraph.network import read_ros_handshake_header, write_ros_handshake_header
+    with socket.create_connection(address, timeout=5.0) as sock:
+        write_ros_handshake_header(sock, {"callerid": callerid, "service": name,
+                                          "md5sum": srv_type._md5sum, "persistent": "0"})
+        read_ros_handshake_header(sock, BytesIO(), 4096)
+        sock.sendall(body)
+        sock.settimeout(1.0)
+        try:
+            sock.recv(100)
+        except OSError:
+            pass
 
 
 def call_service(address, name, srv_type, fields):

@@ -6,14 +6,16 @@ as in Gazebo: the robot's true pose and velocity) is the same, to the last bit, 
 run from the new world. (The models' poses where the sim was paused are not compared: the
 pause comes after a number of steps that the wall clock decides.)
 
-When a command acts. The diff drive reads cmd_vel at its 30 Hz control ticks. The test sends
-each command when the first /odom at or after its time arrives; at the sim's real-time factor of
-0.2 the command reaches the sim before the next tick (1/30 s of sim time, 167 ms of wall time),
-and acts at the same tick in both runs. On a machine busy with other work a command can miss
-its tick (seen once in four runs of the four stages, with two test suites beside them). Such a
-miss shows as runs that part within MISS_WINDOW after a command's time: the reset and the run
-are then done again, up to ATTEMPTS times; runs that part anywhere else fail at once, and runs
-that keep parting fail after the last attempt. Waits on wall time with limits."""
+When a command acts. The diff drive reads cmd_vel at its 30 Hz control ticks, and /odom is
+published at the same moments, so a command sent on an /odom races with the tick of that moment
+(a first run, its code not yet warm, answered later than the runs after it, and acted one tick
+later). The test sends each command when /clock passes the middle between two ticks: at the
+sim's real-time factor of 0.2 the command then has half a tick (1/60 s of sim time, 83 ms of
+wall time) to reach the sim, and acts at the next tick in every run. On a machine busy with
+other work a command can still miss it: such a miss shows as runs that part within MISS_WINDOW
+after a command's time, and the reset and the run are done again, up to ATTEMPTS times; runs
+that part anywhere else fail at once, and runs that keep parting fail after the last attempt.
+Waits on wall time with limits."""
 import math
 import time
 import unittest
@@ -21,11 +23,16 @@ import unittest
 import rospy
 import rostest
 from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
 
 from sim_test_support import Driver, Gazebo, wait_for
 
-# (sim time s, linear m/s, angular rad/s): forward, a tight turn, backing while turning, stop
-SCHEDULE = [(0.1, 0.22, 0.0), (1.5, 0.1, 2.0), (2.5, -0.15, -1.0), (3.0, 0.0, 0.0)]
+TICK = 1.0 / 30.0   # s: the diff drive's control period
+# (sim time s, linear m/s, angular rad/s): forward, a tight turn, backing while turning, stop;
+# each time half a tick after a tick
+SCHEDULE = [((k + 0.5) * TICK, linear, angular)
+            for k, linear, angular in ((3, 0.22, 0.0), (45, 0.1, 2.0), (75, -0.15, -1.0),
+                                       (90, 0.0, 0.0))]
 RUN_END = 3.5      # s of sim time
 WALL_LIMIT = 90.0  # s of wall time for one run
 MISS_WINDOW = 0.1  # s of sim time after a command's time where a missed tick shows first
@@ -46,21 +53,26 @@ class ResetExactTest(unittest.TestCase):
         pending = list(SCHEDULE)
 
         def on_odom(msg):
-            stamp = msg.header.stamp.to_nsec()
             p, q = msg.pose.pose.position, msg.pose.pose.orientation
             v, w = msg.twist.twist.linear, msg.twist.twist.angular
-            odometry.append((stamp, (p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, w.z)))
-            while pending and stamp >= pending[0][0] * 1e9:
+            odometry.append((msg.header.stamp.to_nsec(),
+                             (p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, w.z)))
+
+        def on_clock(msg):
+            now = msg.clock.to_sec()
+            while pending and now >= pending[0][0]:
                 _, linear, angular = pending.pop(0)
                 self.driver.send(linear, angular)
 
-        subscriber = rospy.Subscriber("odom", Odometry, on_odom, queue_size=100)
+        subscribers = [rospy.Subscriber("odom", Odometry, on_odom, queue_size=100),
+                       rospy.Subscriber("/clock", Clock, on_clock, queue_size=1)]
         try:
             self.driver.call("/gazebo/unpause_physics")
             done = wait_for(lambda: odometry and odometry[-1][0] >= RUN_END * 1e9, WALL_LIMIT)
             self.driver.call("/gazebo/pause_physics")
         finally:
-            subscriber.unregister()
+            for subscriber in subscribers:
+                subscriber.unregister()
         self.assertTrue(done, "the sim did not reach %g s of sim time" % RUN_END)
         time.sleep(0.5)   # (odometry published before the pause still coming in)
         return [o for o in odometry if o[0] <= RUN_END * 1e9]

@@ -7,6 +7,8 @@ the loop needs around it:
   sleep_until(t)   sleep until the wall clock reads ``t``, cut short by a request (the loop's
                    wake event) or a stop; replaces ``Pacer.sleep_until`` (uninterruptible)
   clock_due(sim)   Gazebo's ~pub_clock_frequency: whether /clock of sim time ``sim`` may go
+  frame_in_time(sim)  whether a camera frame due at sim time ``sim`` is drawn (at a pace: not
+                   while the loop is behind the wall clock)
 Units: wall times and durations in seconds of ``time.monotonic``; sim times in seconds.
 """
 import math
@@ -77,3 +79,10 @@ class LoopPacer(Pacer):
     def clock_anew(self) -> None:
         """The next /clock goes whatever the gap (after reset_simulation: time went back)."""
         self._next_clock_wall = -math.inf
+
+    def frame_in_time(self, sim_time: float) -> bool:
+        """Whether a camera frame due at ``sim_time`` (s) is drawn: as fast as possible always
+        (clients wait for it); at a pace only while the loop is not behind the wall clock. A
+        frame drawn late makes the loop later still, and every frame after it: it is skipped
+        instead, the image topics' rate falls and the sim keeps its pace."""
+        return self.rtf <= 0 or self.ahead(sim_time) >= 0.0

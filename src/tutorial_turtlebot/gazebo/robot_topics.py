@@ -61,6 +61,8 @@ class RobotTopics:
         self._advertised = []  # every publisher made for this robot, the camera's too
         # sensor readings published, for ~performance_metrics (world_api)
         self.sensor_updates = {"scan": 0, "imu": 0, "camera": 0}
+        # camera ticks the loop skipped, being behind the wall clock (LoopPacer.frame_in_time)
+        self.frames_skipped = 0
 
         def advertise(topic, msg_type, queue_size=1):
             publisher = make_publisher(topic, msg_type, queue_size=queue_size)

@@ -55,9 +55,10 @@ from rosgraph_msgs.msg import Clock
 from tf2_msgs.msg import TFMessage
 from rospy.rostime import _set_rostime
 
-from .impl import tcpros_guard, unreachable_publishers
+from .impl import (connection_caps, publisher_connects, service_guard, tcpros_guard,
+                   unreachable_publishers)
 from .loop_pacer import WAKE_CHECK, LoopPacer
-from .loop_requests import ANSWER_TIMEOUT, LoopRequests
+from .loop_requests import ANSWER_TIMEOUT, Busy, LoopRequests
 from .impl.master_watch import MasterWatch
 from .world_api import WorldApi
 from ..errors import UserError, one_line
@@ -74,7 +75,8 @@ from .send_queue import SendQueue
 from .single_instance import refuse_if_running
 from ..sim.world.simulation import SimConfig, Simulation
 from ..sim.world.world_models import RequestError
-from ..sim.files.world_sdf import world_from_command_line
+from ..sim.files import mesh_cache
+from ..sim.files.world_catalogue import world_from_command_line
 
 SHUTDOWN_CHECK_STEPS = 200
 # The longest (wall s) the loop keeps the GIL while another thread of the node waits for it:
@@ -187,10 +189,18 @@ class SimNode:
         ``timeout`` wall s (then it never runs). From any thread but the loop's."""
         return self.requests.call(action, timeout)
 
-    def queue_in_loop(self, action) -> None:
+    def queue_in_loop(self, action, key=None) -> bool:
         """Run ``action()`` in the loop between two steps; return at once (its result and
-        exceptions are dropped: ``action`` handles its own)."""
-        self.requests.put(action)
+        exceptions are dropped: ``action`` handles its own). With a ``key``, it replaces an
+        action of that key not yet run (LoopRequests.put_latest). False when the loop's queue
+        is full: ``action`` is dropped."""
+        if key is not None:
+            return self.requests.put_latest(key, action)
+        try:
+            self.requests.put(action)
+        except Busy:
+            return False
+        return True
 
     def pause(self) -> None:
         """In the loop: stop stepping (requests are still answered)."""
@@ -246,6 +256,9 @@ class SimNode:
                 continue
             topics = self.robot_topics.get(robot.name)
             if topics is None:   # (its topics could not be made: it is being taken out)
+                continue
+            if name == "camera" and not self.pacer.frame_in_time(self.sim.time):
+                topics.frames_skipped += 1   # the loop is late: no image, no camera_info
                 continue
             try:
                 topics.publishers[name](stamp)
@@ -456,9 +469,14 @@ def _node_params():
     return config, real_time_factor, paused, status_period, pub_clock_frequency
 
 
+def _log_warning(line: str) -> None:
+    rospy.logwarn("gazebo: %s", line)
+
+
 def _log_start(sim: Simulation, config: SimConfig, real_time_factor: float) -> None:
-    """What the world file names but Gazebo would skip, the robot (or none) and the camera."""
-    for warning in sim.world.warnings:
+    """What the world file names but Gazebo would skip, what its building could not draw as
+    its files say (sim.physics.warnings: textures), the robot (or none) and the camera."""
+    for warning in tuple(sim.world.warnings) + tuple(sim.physics.warnings):
         rospy.logwarn("gazebo: %s", warning)
     if sim.robot is not None:
         rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
@@ -491,9 +509,16 @@ def main() -> None:
     # Before the first topic and service: a client that stalls in its handshake (or is not a
     # ROS client at all) must not keep the others out.
     tcpros_guard.install()
+    # Threads are a budget: capped subscribers and callers, closed and stalled subscribers
+    # dropped, a bounded number of publishers connected to (before unreachable_publishers).
+    connection_caps.install()
+    publisher_connects.install()
     # Before the first subscription: a publisher it cannot reach is named in one line.
     unreachable_publishers.install()
+    # Before the first service: a malformed request is one throttled line, not a traceback.
+    service_guard.install()
     _own_the_clock()
+    mesh_cache.warning_sink = _log_warning     # the disk mesh cache's one line, if any
     try:
         config, real_time_factor, paused, status_period, pub_clock_frequency = _node_params()
         sim = Simulation(config)

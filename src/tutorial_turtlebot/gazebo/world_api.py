@@ -56,7 +56,8 @@ from gazebo_msgs.srv import (ApplyBodyWrench, ApplyBodyWrenchResponse, ApplyJoin
 from geometry_msgs.msg import Pose, Twist
 from std_srvs.srv import Empty, EmptyResponse
 
-from .loop_requests import ANSWER_TIMEOUT, NotAnswered
+from .callback_pace import CallbackPace
+from .loop_requests import ANSWER_TIMEOUT, MAX_QUEUED, Busy, NotAnswered
 from ..errors import one_line
 from .part_times import TIMES
 from ..sim.world.physics_properties import OdeConfig, PhysicsProperties
@@ -65,6 +66,8 @@ from ..sim.world.world_control import RequestError, WorldControl
 from ..sim.world.world_models import spawn_failure
 
 METRICS_PERIOD = 1.0     # wall s between two ~performance_metrics
+BUSY = ("the simulation is busy (%d requests wait for it); nothing was done: try again"
+        % MAX_QUEUED)
 JOINT_TYPES = {"revolute": GetJointPropertiesResponse.REVOLUTE,
                "continuous": GetJointPropertiesResponse.CONTINUOUS,
                "prismatic": GetJointPropertiesResponse.PRISMATIC,
@@ -149,6 +152,7 @@ class WorldApi:
         if model_states_rate > 0:
             node.add_output("model_states", self._publish_states)
             self.sim.add_schedule("model_states", model_states_rate)
+        self.topic_pace = CallbackPace()   # a flooding publisher of the two topics is slowed
         rospy.Subscriber("~set_model_state", ModelState, self._on_set_model_state, queue_size=10)
         rospy.Subscriber("~set_link_state", LinkState, self._on_set_link_state, queue_size=10)
         for name, srv_type, handler in (
@@ -206,6 +210,8 @@ class WorldApi:
         def call(request):
             try:
                 return run(request)
+            except Busy:
+                problem = BUSY
             except NotAnswered:
                 problem = ("the simulation did not answer within %g s; nothing was done"
                            % ANSWER_TIMEOUT)
@@ -222,6 +228,8 @@ class WorldApi:
         def handle(_request):
             try:
                 self.run_in_loop(action)
+            except Busy:
+                raise rospy.ServiceException("%s: %s" % (name, BUSY)) from None
             except NotAnswered:
                 raise rospy.ServiceException(
                     "%s: the simulation loop did not answer within %g s; nothing was done"
@@ -233,9 +241,11 @@ class WorldApi:
             return EmptyResponse()
         return handle
 
-    def queue_in_loop(self, action):
+    def queue_in_loop(self, action, key=None):
         """Run ``action()`` in the loop without waiting (topic twins of the services, the
-        metrics); a RequestError is a throttled warning, anything else an error line."""
+        metrics); a RequestError is a throttled warning, anything else an error line. With a
+        ``key``, an action of that key the loop has not run yet is replaced (the latest wins).
+        Dropped, with a throttled warning, when the loop's queue is full."""
         def run():
             try:
                 action()
@@ -243,7 +253,8 @@ class WorldApi:
                 rospy.logwarn_throttle(5.0, str(err))
             except Exception as err:  # noqa: BLE001
                 rospy.logerr(one_line(err))
-        self.node.queue_in_loop(run)
+        if not self.node.queue_in_loop(run, key):
+            rospy.logwarn_throttle(5.0, "a topic message was dropped: " + BUSY)
 
     # --- publishing --------------------------------------------------------------------------
 
@@ -285,8 +296,10 @@ class WorldApi:
         return SetModelStateResponse(True, "SetModelState: set model state done")
 
     def _on_set_model_state(self, state: ModelState) -> None:
+        self.topic_pace.wait()
         self.queue_in_loop(lambda: self.control.set_model_state(
-            state.model_name, pose_in(state.pose), twist_in(state.twist), state.reference_frame))
+            state.model_name, pose_in(state.pose), twist_in(state.twist), state.reference_frame),
+            key=("set_model_state", state.model_name))
 
     def _get_link_state(self, req):
         resp = GetLinkStateResponse()
@@ -312,8 +325,10 @@ class WorldApi:
         return SetLinkStateResponse(True, "SetLinkState: set link state done")
 
     def _on_set_link_state(self, state: LinkState) -> None:
+        self.topic_pace.wait()
         self.queue_in_loop(lambda: self.control.set_link_state(
-            state.link_name, pose_in(state.pose), twist_in(state.twist), state.reference_frame))
+            state.link_name, pose_in(state.pose), twist_in(state.twist), state.reference_frame),
+            key=("set_link_state", state.link_name))
 
     def _get_world_properties(self, _req):
         return GetWorldPropertiesResponse(sim_time=self.sim.time,
@@ -437,11 +452,12 @@ class WorldApi:
         return resp
 
     def _set_link_properties(self, req):
-        c = req.com.position
+        c, q = req.com.position, req.com.orientation
         try:
             self.control.set_link_properties(
                 req.link_name, (c.x, c.y, c.z), req.gravity_mode, req.mass,
-                (req.ixx, req.ixy, req.ixz, req.iyy, req.iyz, req.izz))
+                (req.ixx, req.ixy, req.ixz, req.iyy, req.iyz, req.izz),
+                com_orientation=(q.x, q.y, q.z, q.w))
         except RequestError as err:
             return SetLinkPropertiesResponse(False, str(err))
         return SetLinkPropertiesResponse(True, "SetLinkProperties: properties set")

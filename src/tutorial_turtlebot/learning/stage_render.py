@@ -31,7 +31,7 @@ import numpy as np
 from ..errors import UserError
 from ..robot_models import MODELS
 from ..sim.devices.lidar import ray_directions
-from ..sim.files.world_sdf import Shape, World
+from ..sim.files.world_types import Shape, World
 from ..sim.kinematics import transform_from_xyz_rpy, yaw_from_quat
 from ..sim.world.spawn_check import footprint_radius
 from .robotis_stages import GOAL_RANGE

@@ -77,3 +77,21 @@ def test_clock_at_most_one_a_gap_by_its_due_wall_time():
     assert pacer(1.0, pub_clock_frequency=0.0).clock_due(0.0) is True
     unlimited = pacer(1.0)
     assert all(unlimited.clock_due(k * 1e-6) for k in range(10))
+
+
+def test_a_camera_frame_is_skipped_while_the_loop_is_behind_the_wall_clock():
+    p = pacer(1.0)
+    p.restart(0.0)
+    assert p.frame_in_time(0.100) is True            # due 100 ms from now: drawn
+    time.sleep(0.05)                                 # a frame took 50 ms: the loop is late
+    assert p.frame_in_time(0.033) is False           # due 17 ms ago: skipped
+    assert p.frame_in_time(0.200) is True            # physics caught up: due later
+    slow = pacer(0.5)                                # half real time: 1 sim ms is 2 wall ms
+    slow.restart(0.0)
+    time.sleep(0.03)
+    assert slow.frame_in_time(0.010) is False        # due 10 ms ago on the wall clock
+    assert slow.frame_in_time(0.100) is True         # due 200 ms after the start
+    fast = pacer(0.0)                                # as fast as possible: every frame
+    fast.restart(0.0)
+    time.sleep(0.01)
+    assert fast.frame_in_time(0.0) is True

@@ -106,3 +106,71 @@ def test_clear_wake_before_reading_leaves_a_later_request_to_wake_again():
     assert requests.run_pending() == 1 and not requests.wake.is_set()
     requests.put(lambda: None)
     assert requests.wake.is_set()
+
+
+def test_a_full_queue_refuses_at_once_and_the_refused_action_never_runs():
+    from tutorial_turtlebot.gazebo.loop_requests import Busy
+
+    requests = LoopRequests(limit=3)
+    ran = []
+    for i in range(3):
+        requests.put(lambda i=i: ran.append(i))
+    start = time.monotonic()
+    with pytest.raises(Busy):
+        requests.call(lambda: ran.append("late"), 5.0)
+    assert time.monotonic() - start < 0.5            # no wait for a refusal
+    assert isinstance(Busy(), NotAnswered)           # "nothing was done", as a timeout
+    assert requests.run_pending() == 3
+    assert ran == [0, 1, 2]
+
+
+def test_the_loop_runs_what_was_queued_when_it_began_and_comes_back_for_the_rest():
+    """A producer that queues from inside the loop's turn cannot keep the loop from stepping."""
+    requests = LoopRequests()
+    ran = []
+
+    def refill(i):
+        ran.append(i)
+        requests.put(lambda: refill(i + 1))          # another, queued while the loop runs
+    requests.put(lambda: refill(0))
+    requests.clear_wake()
+    assert requests.run_pending() == 1
+    assert ran == [0]
+    assert requests.wake.is_set()                    # the rest waits for the next turn
+    assert requests.run_pending() == 1
+    assert ran == [0, 1]
+
+
+def test_the_latest_message_of_a_key_wins_and_holds_one_place():
+    requests = LoopRequests(limit=2)
+    ran = []
+    for i in range(1000):                            # a flood on one model
+        assert requests.put_latest(("set_model_state", "box"), lambda i=i: ran.append(("box", i)))
+    assert requests.put_latest(("set_model_state", "ball"), lambda: ran.append(("ball", 0)))
+    assert not requests.put_latest(("set_model_state", "cone"), lambda: ran.append("cone"))
+    assert requests.run_pending() == 2
+    assert ran == [("box", 999), ("ball", 0)]
+    assert requests.put_latest(("set_model_state", "cone"), lambda: ran.append("cone"))
+    assert requests.run_pending() == 1 and ran[-1] == "cone"
+
+
+def test_a_connection_is_paced_to_its_rate_and_another_is_not_held_by_it():
+    from tutorial_turtlebot.gazebo.callback_pace import CallbackPace
+
+    now = [0.0]
+    slept = []
+
+    def sleep(seconds):
+        slept.append(seconds)
+        now[0] += seconds
+    pace = CallbackPace(max_rate=100.0, clock=lambda: now[0], sleep=sleep)
+    for _ in range(5):              # a flood: five messages at once on one connection
+        pace.wait()
+    assert slept == [0.01] * 4      # each later one waits for its period
+    other = threading.Thread(target=pace.wait)
+    other.start()
+    other.join()                    # another connection's first message waits for nothing
+    assert len(slept) == 4
+    now[0] += 1.0
+    pace.wait()                     # a message after a pause waits for nothing
+    assert len(slept) == 4

@@ -105,3 +105,66 @@ def test_an_output_that_fails_is_skipped_and_named_once_and_the_others_go_on(nod
     scan_1 = node.robot_topics["tb3_1"].pubs["scan"]
     odom_0 = node.robot_topics["tb3_0"].pubs["odom"]
     assert scan_1.sent >= 9 and odom_0.sent >= 50         # the other outputs went on
+
+
+def test_the_start_logs_every_warning_through_rospy_in_lines_of_at_most_200_characters(
+        tmp_path, monkeypatch):
+    """A world of three missing includes and a textured crate over a lowered texture budget:
+    each warning (the world's, its building's) one rospy line of at most 200 characters but
+    the folders searched, said once."""
+    import os
+    import unit_paths
+    from tutorial_turtlebot.sim.engine import physics as physics_module, texture_budget
+    monkeypatch.setenv("GAZEBO_MODEL_PATH", os.path.join(unit_paths.FIXTURES, "gazebo_models"))
+    world = tmp_path / "w.world"
+    world.write_text('<?xml version="1.0"?><sdf version="1.6"><world name="w">%s%s</world></sdf>'
+                     % ("".join("<include><uri>model://missing_%d</uri></include>" % i
+                                for i in range(3)),
+                        "<include><uri>model://max_style_crate</uri></include>"))
+    monkeypatch.setattr(texture_budget, "MAX_TEXTURE_PIXELS", 300)
+    monkeypatch.setattr(physics_module, "enable_egl", lambda cid: False)
+    logged = []
+    monkeypatch.setattr(sim_node.rospy, "logwarn", lambda text, *args: logged.append(
+        (text % args)[len("gazebo: "):]))
+    monkeypatch.setattr(sim_node.rospy, "loginfo", lambda *args: None)
+    config = SimConfig(model="burger", world=str(world), x=-2.0, y=0.0)
+    sim = Simulation(config)
+    try:
+        sim_node._log_start(sim, config, 1.0)
+    finally:
+        sim.close()
+    searched = [line for line in logged if "model:// searched" in line]
+    assert len(searched) == 1 and "https://github.com/osrf/gazebo_models" in searched[0]
+    rest = [line for line in logged if line not in searched]
+    assert sum("<include> left out: model://missing_" in line for line in rest) == 3
+    assert any("texture budget of 300 px" in line for line in rest)
+    assert all(len(line) <= 200 and "\n" not in line for line in rest), rest
+
+
+class StubPacer:
+    """LoopPacer.frame_in_time as told: whether the loop is in time."""
+
+    def __init__(self):
+        self.in_time = True
+
+    def frame_in_time(self, _sim_time):
+        return self.in_time
+
+
+def test_a_camera_frame_due_while_the_loop_is_late_is_skipped(node):
+    node.control.spawn("tb3", urdf_text("waffle_pi"), at(0.0, 0.0), kind="urdf",
+                       robot_namespace="tb3")
+    node.sync_robots()
+    topics = node.robot_topics["tb3"]
+    drawn = []
+    topics.publishers["camera"] = drawn.append
+    node.pacer = StubPacer()
+    for in_time in (True, False, False, True):        # one camera tick (30 Hz) each
+        node.pacer.in_time = in_time
+        due = []
+        while not any(name == "camera" for _, name in due):
+            due = node.sim.step()
+            node._publish_due(due)
+    assert len(drawn) == 2 and topics.frames_skipped == 2
+    assert drawn[0] < drawn[1]                          # stamps of the first and last tick
+    assert node.robot_topics["tb3"].pubs["odom"].sent > 0   # the rest goes on

@@ -89,6 +89,7 @@ def test_restored_and_unwound_when_a_signal_would_kill_the_process(terminal, sig
     child = textwrap.dedent("""
         import os, signal, sys, termios
         from tutorial_turtlebot.lab.terminal_keys import TerminalKeys
+        signal.signal(%d, signal.SIG_DFL)   # (a child of nohup inherits SIGHUP ignored)
         try:
             with TerminalKeys(sys.stdin):
                 assert not termios.tcgetattr(sys.stdin)[3] & termios.ICANON
@@ -96,7 +97,7 @@ def test_restored_and_unwound_when_a_signal_would_kill_the_process(terminal, sig
                 print("not reached", flush=True)
         finally:
             print("cleaned up", flush=True)
-    """ % signum)
+    """ % (signum, signum))
     done = subprocess.run([sys.executable, "-c", child], stdin=stream, capture_output=True,
                           env=dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src")),
                           timeout=30, start_new_session=True)

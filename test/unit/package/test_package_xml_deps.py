@@ -67,14 +67,16 @@ def imported_modules():
 
 
 def local_modules():
-    """The package's own modules, the tests' helper modules (files beside them) and the
-    benchmark's (bench/, which tests import too)."""
+    """The package's own modules, the tests' helper modules (files beside them), the
+    benchmark's (bench/, which tests import too) and the tools' scripts (tools/corpus/)."""
     names = {"tutorial_turtlebot"}
     for top in ("test/unit", "test/rostest", "test"):
         for name in os.listdir(os.path.join(ROOT, top)):
             stem = name[:-3] if name.endswith(".py") else name
             names.add(stem)
-    names.update(f[:-3] for f in os.listdir(os.path.join(ROOT, "bench")) if f.endswith(".py"))
+    for scripts in ("bench", os.path.join("tools", "corpus")):
+        names.update(f[:-3] for f in os.listdir(os.path.join(ROOT, scripts))
+                     if f.endswith(".py"))
     for folder, _, files in os.walk(os.path.join(ROOT, "test")):
         names.update(f[:-3] for f in files if f.endswith(".py"))
     return names

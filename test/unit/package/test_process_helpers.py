@@ -254,3 +254,18 @@ def test_rss_kb_of_a_zombie_is_none():
         assert rss_kb(proc.pid) is None
     finally:
         proc.wait()
+
+
+def test_a_node_is_found_by_its_name_and_its_master_port():
+    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:54321/")
+    child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)",
+                              "__name:=some_node"], env=env)
+    try:
+        found = process_helpers.wait_for(
+            lambda: process_helpers.node_on_master("some_node", 54321), 10.0)
+        assert found == child.pid
+        assert process_helpers.node_on_master("some_node", 54322) is None
+        assert process_helpers.node_on_master("other_node", 54321) is None
+    finally:
+        child.kill()
+        child.wait()

@@ -25,6 +25,7 @@ from typing import Callable, Optional
 
 HINT = "is ROS_IP or ROS_HOSTNAME set on its machine?"
 LOOKUP_TIMEOUT = 2.0  # wall s for the master's answer when naming the publisher's node
+MAX_REPORTED = 256    # (topic, URI) pairs remembered as already named
 
 
 def describe_error(err: BaseException) -> str:
@@ -48,7 +49,7 @@ class UnreachableLog:
         self._log = log
         self._name_of = name_of if name_of is not None else publisher_node
         self._lock = threading.Lock()
-        self.reported = set()     # (topic, uri)
+        self.reported = {}        # (topic, uri): None, oldest first; at most MAX_REPORTED
 
     def report(self, topic: str, uri: str, error: BaseException, tcpros=None) -> bool:
         """Write the line unless one was written for (topic, uri); True if written.
@@ -57,7 +58,9 @@ class UnreachableLog:
         with self._lock:
             if key in self.reported:
                 return False
-            self.reported.add(key)
+            if len(self.reported) >= MAX_REPORTED:   # a flood of URIs: forget the oldest
+                del self.reported[next(iter(self.reported))]
+            self.reported[key] = None
         try:
             node = self._name_of(topic, uri)
         except Exception:  # noqa: BLE001 - naming the node is a courtesy, never a failure

@@ -3,9 +3,10 @@ prints on import; and a way to silence what its loaders print straight to the te
 import contextlib
 import ctypes
 import os
-import threading
+import tempfile
 
 _LIBC = ctypes.CDLL(None)
+KEPT_OUTPUT = 1 << 20    # bytes of what was printed that ``so_far`` gives back, at most
 
 
 @contextlib.contextmanager
@@ -13,37 +14,35 @@ def quiet_output():
     """Silence what pybullet's C++ code prints straight to file descriptors 1 and 2 (its build
     date, the URDF importer's notes, the EGL plugin's GL version); Python's own output is
     unaffected afterwards. The context's value is a function that tells what was printed so
-    far (bytes), for a caller that must wait for another thread's chatter to end."""
-    saved = []
-    read_end, write_end = os.pipe()
-    printed = bytearray()
+    far (bytes, the first KEPT_OUTPUT of them), for a caller that must wait for another
+    thread's chatter to end.
 
-    def drain():
-        while True:
-            chunk = os.read(read_end, 65536)
-            if not chunk:
-                return
-            if len(printed) < 1 << 20:           # what it says, not kept without end
-                printed.extend(chunk)
-    reader = threading.Thread(target=drain, name="quiet_output", daemon=True)
-    reader.start()
+    The output goes to an unlinked temporary file, never to a pipe: a write to a file does not
+    wait for a reader. (A pipe needs a thread to drain it, which needs Python's GIL, which
+    pybullet holds while it loads: a URDF of a 400-link chain, whose importer prints a tab per
+    level of depth, filled a pipe's 64 KB and the sim froze for good.)"""
+    saved = []
+    sink = tempfile.TemporaryFile(prefix="tutorial_turtlebot_output_")
+    final = []   # what was printed, once the context has ended
     try:
+        _LIBC.fflush(None)   # what C buffered before goes where it was going
         for fd in (1, 2):
             saved.append((fd, os.dup(fd)))
-            os.dup2(write_end, fd)
+            os.dup2(sink.fileno(), fd)
 
         def so_far() -> bytes:
+            if final:
+                return final[0]
             _LIBC.fflush(None)
-            return bytes(printed)
+            return os.pread(sink.fileno(), KEPT_OUTPUT, 0)
         yield so_far
     finally:
-        _LIBC.fflush(None)  # what C buffered goes to the pipe too
+        _LIBC.fflush(None)  # what C buffered goes to the file too
         for fd, copy in saved:
             os.dup2(copy, fd)
             os.close(copy)
-        os.close(write_end)
-        reader.join(5.0)
-        os.close(read_end)
+        final.append(os.pread(sink.fileno(), KEPT_OUTPUT, 0))
+        sink.close()
 
 
 with quiet_output():

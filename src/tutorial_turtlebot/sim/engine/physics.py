@@ -22,7 +22,7 @@ from ..files.urdf_meshes import bullet_urdf_text
 from .bodies import Body
 from .urdf_loader import load_urdf
 from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP, body_pool, build_world
-from ..files.world_sdf import World
+from ..files.world_types import World
 from ...errors import UserError
 
 
@@ -45,6 +45,10 @@ BODY_FRICTION = 0.0              # chassis and caster skids slide freely
 BRAKE_POSITION_GAIN = 0.1
 BRAKE_MOVED = 0.5
 SPAWN_CLEARANCE = 0.001          # m: drop the robot from just above the floor
+# surfaces_below: the hits of one ray it reads at most (Bullet's all-hits ray test, one pass
+# per hit), and how near its start a hit is taken as the ray starting inside a convex solid (m)
+MAX_RAY_HITS = 16
+RAY_START_TOLERANCE = 1e-6
 
 
 class WorldPhysics:
@@ -73,7 +77,10 @@ class WorldPhysics:
         pybullet.setPhysicsEngineParameter(numSolverIterations=solver_iterations,
                                            enableFileCaching=0, deterministicOverlappingPairs=1,
                                            physicsClientId=cid)
-        self.world_bodies = build_world(world, cid)
+        # one line each: what the world's building could not draw as its files say (textures
+        # halved for the texture budget, unreadable now); the node logs them with the world's
+        self.warnings: List[str] = []
+        self.world_bodies = build_world(world, cid, self.warnings)
         self._free_bits: List[int] = [1 << (FIRST_ROBOT_BIT + i) for i in range(MAX_ROBOTS)]
         # threads pybullet casts a batch of rays on: the hits are the same for any count; 2
         # take 60 % of the wall time on an idle second core, and a fifth more CPU in all

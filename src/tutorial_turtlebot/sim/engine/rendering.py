@@ -3,8 +3,8 @@
 - ``enable_egl`` / ``disable_egl``: pybullet's EGL renderer plugin (Mesa or a GPU), loaded right
   after ``pybullet.connect`` and before any body exists; ``CameraRenderer`` falls back to
   pybullet's TinyRenderer (CPU) where it does not load.
-- ``note_textures`` / ``texture_budget``: what the builders of textured visuals tell the
-  renderer of a client (textures change the OpenGL shader; their pixels are bounded per client).
+- ``note_textures``: what the builders of textured visuals tell the renderer of a client
+  (textures change the OpenGL shader); their sizes are texture_budget's.
 - ``validate_spec``: the cameras the renderer can make (UserError, one line, for others).
 - ``CameraRenderer.render``: the RGB image and the depth image of a camera (devices.camera's
   spec) whose optical frame (z forward, x right, y down) has a given world pose.
@@ -12,6 +12,7 @@
 Images are row-major, row 0 at the top, column 0 at the left (sensor_msgs/Image order).
 Units: metres, radians.
 """
+import contextlib
 import importlib.util
 import math
 import subprocess
@@ -22,7 +23,9 @@ import numpy as np
 
 from ...errors import UserError
 from ..files import limits
-from .bullet import pybullet
+from . import texture_budget
+from .bullet import pybullet, quiet_output
+from . import view_culling
 from ..files.robot_plugins import CameraSpec
 
 # pybullet's OpenGL renderers read images from a buffer of this size (EGL: 1024 x 768).
@@ -44,6 +47,9 @@ BACKGROUND_RGB = (178, 178, 178)
 LIGHT_DIRECTION = (0.5, -0.1, 0.9)
 LIGHT_AMBIENT, LIGHT_DIFFUSE, LIGHT_SPECULAR = 0.8, 0.2, 0.0
 EGL_PROBE_TIMEOUT = 30.0         # s for the subprocess that checks that EGL renders here
+# The EGL plugin prints "ven = <vendor>" at each of its first images (measured: two, whatever
+# their size and flags): enable_egl draws them, silenced.
+EGL_CHATTY_IMAGES = 2
 
 MAX_IMAGE_SIDE = limits.MAX_IMAGE_SIDE   # px: larger images are refused
 Vector = Sequence[float]
@@ -92,13 +98,6 @@ sys.exit(0 if g > 100 and r < 60 and b < 60 else 4)
 _egl_works: Optional[bool] = None     # the probe's answer, once per process
 _egl_plugins: Dict[int, int] = {}     # client id -> plugin id
 _textured_clients = set()             # client ids with a textured visual (note_textures)
-# Texture pixels that the visuals of one client may use (texture_budget): TinyRenderer keeps a
-# decoded copy of a texture for every visual shape that uses it (measured: 14 MB per visual of
-# a 2048 x 2048 image), so a world of many textured parts would fill the memory. 64 M px:
-# about 220 MB with TinyRenderer.
-MAX_TEXTURE_PIXELS = 64 * 1024 * 1024
-_texture_pixels: Dict[int, int] = {}  # client id -> pixels taken
-_texture_refused = set()              # client ids that texture_budget has said False to
 
 
 def egl_plugin_path() -> Optional[str]:
@@ -138,29 +137,36 @@ def enable_egl(client_id: int) -> bool:
     Call it right after ``pybullet.connect`` (DIRECT) and before any body is created: the
     plugin draws only the bodies created after it. Never raises; False means TinyRenderer.
     Loading it again into the same client is harmless (pybullet keeps one). Call
-    ``disable_egl`` before ``pybullet.disconnect``: client ids are reused. The plugin prints a
-    few lines (GL vendor, version) straight to file descriptor 1.
+    ``disable_egl`` before ``pybullet.disconnect``: client ids are reused. The plugin prints
+    a few lines (GL vendor, version) straight to file descriptor 1 when it loads, and
+    "ven = <GL vendor>" at each of its first two images (each makes a render target): it is
+    loaded and draws two empty 1 x 1 images here, with what they print silenced.
     """
     if not egl_available():
         return False
-    try:
-        plugin = pybullet.loadPlugin(egl_plugin_path(), "_eglRendererPlugin",
-                                     physicsClientId=client_id)
-    except pybullet.error:
-        return False
-    if plugin < 0:
-        return False
+    with quiet_output():
+        try:
+            plugin = pybullet.loadPlugin(egl_plugin_path(), "_eglRendererPlugin",
+                                         physicsClientId=client_id)
+        except pybullet.error:
+            return False
+        if plugin < 0:
+            return False
+        for _ in range(EGL_CHATTY_IMAGES):
+            pybullet.getCameraImage(1, 1, renderer=pybullet.ER_BULLET_HARDWARE_OPENGL,
+                                    flags=pybullet.ER_NO_SEGMENTATION_MASK,
+                                    physicsClientId=client_id)
     _egl_plugins[client_id] = plugin
     return True
 
 
 def disable_egl(client_id: int) -> None:
     """Unload the EGL plugin of ``client_id`` (before ``pybullet.disconnect``); no-op without.
-    Also forgets ``note_textures`` and ``texture_budget`` of that client (its id may be
-    reused)."""
+    Also forgets ``note_textures``, texture_budget and view_culling of that client (its id may
+    be reused)."""
     _textured_clients.discard(client_id)
-    _texture_pixels.pop(client_id, None)
-    _texture_refused.discard(client_id)
+    texture_budget.forget(client_id)
+    view_culling.forget(client_id)
     plugin = _egl_plugins.pop(client_id, None)
     if plugin is not None:
         try:
@@ -174,23 +180,6 @@ def note_textures(client_id: int) -> None:
     are drawn by the shader that maps textures by their coordinates from then on (see
     CameraRenderer). Until ``disable_egl`` of that client."""
     _textured_clients.add(client_id)
-
-
-def texture_budget(client_id: int, pixels: int) -> bool:
-    """Take ``pixels`` texture pixels for a new textured visual of client ``client_id``; False
-    (nothing taken) when that would pass MAX_TEXTURE_PIXELS: draw it untextured. Until
-    ``disable_egl`` of that client."""
-    used = _texture_pixels.get(client_id, 0)
-    if used + pixels > MAX_TEXTURE_PIXELS:
-        _texture_refused.add(client_id)
-        return False
-    _texture_pixels[client_id] = used + pixels
-    return True
-
-
-def texture_budget_refused(client_id: int) -> bool:
-    """Whether ``texture_budget`` has said False to ``client_id`` (since ``disable_egl``)."""
-    return client_id in _texture_refused
 
 
 def egl_enabled(client_id: int) -> bool:
@@ -220,7 +209,9 @@ class CameraRenderer:
     whatever the flag. OpenGL draws into a 1024 x 768 buffer and would stretch a larger image
     from it, so a larger image is drawn as tiles of at most that size, each with its part of the
     frustum. Every body of the client is drawn: the camera frames of the TurtleBot3 URDFs sit
-    where the near clip plane (3 cm) leaves the robot out of view.
+    where the near clip plane (3 cm) leaves the robot out of view. (With the EGL plugin and the
+    shadow-map shader, the static bodies wholly out of view are left out of an image, which
+    stays the same: view_culling.)
     """
 
     def __init__(self, client_id: int, spec: CameraSpec, use_egl: bool,
@@ -247,6 +238,13 @@ class CameraRenderer:
         else:  # TinyRenderer samples each pixel at its corner: move the frustum half a pixel
             self._tiles = _tiles(spec, spec.width, spec.height, TINY_RENDERER_SHIFT)
         self._projective = opengl and skip_shadows
+        # With the shadow-map shader (a textured client) the static bodies out of view are left
+        # out of an EGL image (view_culling). Public: None draws every body (the bench's figure
+        # of the cost without it).
+        self.view_culling = (view_culling.ViewCulling(client_id, spec.hfov,
+                                                      spec.height / spec.width, spec.near,
+                                                      spec.far, LIGHT_DIRECTION)
+                             if egl_enabled(client_id) else None)
 
     @property
     def renderer_name(self) -> str:
@@ -269,14 +267,15 @@ class CameraRenderer:
         """
         spec = self.spec
         view = view_matrix(position, rotation)
-        if len(self._tiles) == 1:
-            rgba, zbuffer = self._render_tile(view, *self._tiles[0])
-        else:
-            rgba = np.empty((spec.height, spec.width, 4), dtype=np.uint8)
-            zbuffer = np.empty((spec.height, spec.width), dtype=np.float32)
-            for tile in self._tiles:
-                r0, r1, c0, c1 = tile[0]
-                rgba[r0:r1, c0:c1], zbuffer[r0:r1, c0:c1] = self._render_tile(view, *tile)
+        with self._left_out(position, rotation):
+            if len(self._tiles) == 1:
+                rgba, zbuffer = self._render_tile(view, *self._tiles[0])
+            else:
+                rgba = np.empty((spec.height, spec.width, 4), dtype=np.uint8)
+                zbuffer = np.empty((spec.height, spec.width), dtype=np.float32)
+                for tile in self._tiles:
+                    r0, r1, c0, c1 = tile[0]
+                    rgba[r0:r1, c0:c1], zbuffer[r0:r1, c0:c1] = self._render_tile(view, *tile)
         # Background where nothing was drawn: one 32-bit store per pixel, in place.
         np.copyto(rgba.view(np.uint32)[:, :, 0], self._background_rgba,
                   where=zbuffer >= EMPTY_ZBUFFER)
@@ -284,6 +283,14 @@ class CameraRenderer:
         if not depth:
             return rgb, None
         return rgb, zbuffer_to_depth(zbuffer, spec.near, spec.far)
+
+    def _left_out(self, position, rotation):
+        """The context an image is drawn in: with the shadow-map shader (EGL, a textured
+        client), the fixed bodies it cannot show are left out (view_culling); else nothing."""
+        projective = self._projective and self.client not in _textured_clients
+        if self.view_culling is None or projective:
+            return contextlib.nullcontext()
+        return self.view_culling.hidden_outside(position, rotation)
 
     def _render_tile(self, view, rows_cols, projection) -> Tuple[np.ndarray, np.ndarray]:
         """(rgba uint8 h x w x 4, z-buffer float32 h x w) of one tile, writable arrays."""

@@ -44,8 +44,8 @@ def load_urdf(client: int, urdf: str) -> int:
 def load_movable(client: int, urdf: str) -> Body:
     """``load_urdf`` of a spawned model without robot plugins, set up as Gazebo moves one: it
     collides with the world, the robots and other movable models, slides with friction 1, has
-    no damping, never sleeps, and its joints turn freely (pybullet's default motors would
-    brake them)."""
+    no damping, never sleeps, and its joints turn freely but for their URDF <dynamics friction>
+    (pybullet's default motors would brake them; its joint damping is not simulated)."""
     body = load_urdf(client, urdf)
     setup_movable(client, body)
     return Body(client, body)
@@ -62,6 +62,7 @@ def setup_movable(client: int, body: int) -> None:
         # a call of its own: with the arguments above pybullet drops the friction of a jointed
         # link (it stays at its default 0.5)
         pybullet.changeDynamics(body, link, lateralFriction=1.0, physicsClientId=client)
-        if link >= 0:
-            pybullet.setJointMotorControl2(body, link, pybullet.VELOCITY_CONTROL, force=0.0,
-                                           physicsClientId=client)
+        if link >= 0:   # the URDF's <dynamics friction> (N m or N) holds it, as Gazebo's
+            friction = pybullet.getJointInfo(body, link, physicsClientId=client)[7]
+            pybullet.setJointMotorControl2(body, link, pybullet.VELOCITY_CONTROL,
+                                           force=friction, physicsClientId=client)

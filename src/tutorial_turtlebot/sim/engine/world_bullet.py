@@ -1,17 +1,19 @@
 """Build a loaded ``World`` (world_sdf) as pybullet bodies. Knows nothing of ROS.
 
-Static models: every collision shape becomes one fixed body that also carries its visual twin's
-colour, so contacts, rays and cameras all see it; a visual without a collision twin becomes a
-body that cameras see and rays and contacts pass through. A static mesh collides with its
-triangles themselves.
+Static models: every collision shape becomes one fixed body that also carries its visual twin
+(same geometry and pose), so contacts, rays and cameras all see it; a collision without a twin
+is not drawn (cameras see visuals only, as in Gazebo: a collision box around a textured mesh
+would hide it); a visual without a collision twin becomes a body that cameras see and rays and
+contacts pass through. A static mesh collides with its triangles themselves.
 Models that are not ``<static>``: every link becomes one movable rigid body of the link's
 ``<inertial>`` mass and inertia, holding all its collisions and visuals (box, cylinder, sphere,
 mesh) and its collisions' friction; a mesh collides as its convex hull (Bullet's moving bodies
 are convex). Its frame is the link's centre of mass (see ``link_com_pose``).
 Mesh visuals are drawn part by part, each in its SDF ``<material>`` colour, or where the visual
 has none, in the mesh file's own colour of that part, and with its texture where it has one
-(mesh_file.write_obj_parts; a texture that cannot be used leaves the part in its colour, else
-grey). A visual with an SDF ``<material>`` is drawn in that colour alone, textures left out.
+(obj_writer.write_obj_parts, each image halved as texture_budget says; a texture that cannot
+be used leaves the part in its colour, else grey, with one warning). A visual with an SDF
+``<material>`` is drawn in that colour alone, textures left out.
 A box or plane whose ``<material>`` script has a texture image (world_sdf ``Shape.texture``,
 material_scripts) is drawn with it, tinted by its colour, the same way (``_box_visual_file``):
 the whole image once across its top face, upright seen from above with +x to the right and +y
@@ -20,22 +22,23 @@ up (u along +x, v along +y, as Gazebo maps a plane); a box shows it on each side
 Units: metres; poses in the world frame (z up), as in world_sdf.
 """
 import os
-import sys
 import tempfile
 from collections import OrderedDict
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import bullet_shapes, collision_filters
+from . import bullet_shapes, collision_filters, texture_budget, view_culling
 from ..files import mesh_cache
 from .bullet import pybullet
-from .rendering import (MAX_TEXTURE_PIXELS, note_textures, texture_budget,
-                        texture_budget_refused)
-from ...errors import WorldError
+from .rendering import egl_enabled, note_textures
+from ...errors import UserError, WorldError
 from ..kinematics import cross_2d, pose_from_xyz_rpy, quat_from_matrix
-from ..files.mesh_file import Mesh, MeshPart, load_mesh, texture_pixels, write_obj_parts
-from ..files.world_sdf import Inertial, Link, Shape, World
+from ..files.mesh_file import load_mesh
+from ..files.mesh_types import Mesh, MeshPart
+from ..files.obj_writer import write_obj_parts
+from ..files.texture_images import texture_info
+from ..files.world_types import Inertial, Link, Shape, World
 
 # World bodies are in collision group 4. A laser that must see the world only casts rays with
 # collisionFilterMask=WORLD_COLLISION_GROUP, and other bodies (the robot) use another group.
@@ -63,15 +66,19 @@ PLANE_MIN_EXTENT = 100.0    # m
 Point = Tuple[float, float]
 
 
-def build_world(world: World, client_id: int) -> Dict[str, int]:
+def build_world(world: World, client_id: int,
+                warnings: Optional[List[str]] = None) -> Dict[str, int]:
     """Create the world's bodies in pybullet client ``client_id``.
 
     Returns shape name -> body id, for every collision shape and every visual without a twin of
     a static model (a polyline that is not convex is one body whose extra pieces are links of
     that body), and for every shape of a movable link (all of one link's shapes share its body).
+    ``warnings``: where to add one line (at most 200 characters) for each texture that is not
+    drawn as its file is, and why (the texture budget halved it, it cannot be read now).
     """
     bodies: Dict[str, int] = {}
     try:
+        _plan_textures(world, client_id, warnings if warnings is not None else [])
         _build(world, client_id, bodies)
     except BaseException:   # a spawn that cannot be built leaves no body behind
         for body in set(bodies.values()):
@@ -100,6 +107,48 @@ def _build(world: World, client_id: int, bodies: Dict[str, int]) -> None:
         for scoped, shapes in movable.items():
             body = _movable_body(links[scoped], shapes, client_id, mesh_dir)
             bodies.update((shape.name, body) for shape in shapes)
+
+
+def _drawn_textures(shape: Shape) -> List[str]:
+    """The texture files a drawn shape is drawn with: its mesh file's own (a mesh visual
+    without an SDF <material>, or its collision twin), or its script's image (a box or plane);
+    [] if none. A mesh that cannot be read gives [] (its body's building says why)."""
+    if shape.kind == "mesh":
+        if not shape.mesh_colours:
+            return []
+        try:
+            mesh = load_mesh(shape.mesh, shape.size)
+        except UserError:
+            return []
+        return [p.texture for p in mesh.parts if p.texture is not None]
+    if shape.kind in ("box", "plane") and shape.texture is not None:
+        return [shape.texture]
+    return []
+
+
+def _plan_textures(world: World, cid: int, warnings: List[str]) -> None:
+    """Tell texture_budget the texture images the world's visuals are drawn with (each image
+    once, with how many visuals use it), and add to ``warnings`` its line, if it halves any,
+    and one line for each texture that cannot be read now (drawn in its colour)."""
+    drawn = [s for s in world.collisions if s.static and s.twin is not None]
+    drawn += [s for s in world.visuals if not s.static or s.twin is None]
+    uses: Dict[str, texture_budget.TextureUse] = {}
+    for shape in drawn:
+        for texture in _drawn_textures(shape):
+            info = texture_info(texture)
+            if info is None:
+                line = ("%s: texture %s not drawn (its file is no usable image now); drawn in "
+                        "its colour" % (shape.name[-80:], os.path.basename(texture)[-60:]))
+                if line not in warnings:
+                    warnings.append(line)
+            elif info.digest in uses:
+                uses[info.digest].visuals += 1
+            else:
+                uses[info.digest] = texture_budget.TextureUse(texture, info.width, info.height)
+    if uses:
+        line = texture_budget.plan(cid, uses, per_visual=not egl_enabled(cid))
+        if line is not None:
+            warnings.append(line)
 
 
 def link_com_pose(link: Link):
@@ -144,10 +193,11 @@ def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> i
     if collisions:
         col = bullet_shapes.collision_shape_array(
             cid, **_shape_arrays(collisions, to_com, cid, mesh_dir, visual=False))
-    vis = -1
     if visuals:
         vis = pybullet.createVisualShapeArray(
             **_shape_arrays(visuals, to_com, cid, mesh_dir, visual=True), physicsClientId=cid)
+    else:
+        vis = _unseen_visual(cid, mesh_dir)     # collisions alone are not drawn
     _, moments = _principal(link.inertial)
     body = pybullet.createMultiBody(baseMass=link.inertial.mass, baseCollisionShapeIndex=col,
                                     baseVisualShapeIndex=vis, basePosition=com_pos,
@@ -161,6 +211,8 @@ def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> i
                             physicsClientId=cid)
     collision_filters.set_filter(cid, body, -1, MOVABLE_COLLISION_GROUP,
                                  MOVABLE_COLLISION_MASK if collisions else 0)
+    if egl_enabled(cid):   # never left out of a camera image, nor what shares its drawing
+        view_culling.note_drawn_groups(cid, body, visuals)
     return body
 
 
@@ -216,22 +268,20 @@ def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: 
 def _visual_files(shape: Shape, mesh: Mesh, cid: int, mesh_dir: str):
     """write_obj_parts of a visual mesh: with its textures where the file's own colours are
     drawn (no SDF <material>), or where it is a box or plane of a script's texture
-    (``_box_mesh``), and the client's texture budget (rendering.texture_budget) allows; tells the
-    camera when the client gets a texture."""
+    (``_box_mesh``), each image halved as the client's texture budget says (texture_budget);
+    tells the camera when the client gets a texture."""
     own = shape.mesh_colours or shape.kind in ("box", "plane")
-    textured = own and any(p.texture is not None for p in mesh.parts)
-    if textured:
-        pixels = sum(texture_pixels(p.texture) for p in mesh.parts if p.texture is not None)
-        first = not texture_budget_refused(cid)
-        textured = texture_budget(cid, pixels)
-        if not textured and first:
-            sys.stderr.write("tutorial_turtlebot: %s: more than %d texture pixels in this "
-                             "simulation; the textured meshes past them are drawn in their "
-                             "colours\n" % (shape.name, MAX_TEXTURE_PIXELS))
-    if textured:
+    halvings: Dict[str, int] = {}    # texture file -> times halved
+    for texture in {p.texture for p in mesh.parts if p.texture is not None} if own else ():
+        info = texture_info(texture)
+        if info is not None:
+            use = texture_budget.TextureUse(texture, info.width, info.height)
+            halvings[texture] = texture_budget.halvings(cid, info.digest, use,
+                                                        per_visual=not egl_enabled(cid))
+    if halvings:
         note_textures(cid)
     # written once for this content, kept in the mesh cache (mesh_cache.obj_parts)
-    return mesh_cache.visual_obj_parts(mesh, mesh_dir, textured)
+    return mesh_cache.visual_obj_parts(mesh, mesh_dir, halvings or None)
 
 
 def _part_colour(shape: Shape, rgba) -> Tuple[float, float, float, float]:
@@ -240,8 +290,15 @@ def _part_colour(shape: Shape, rgba) -> Tuple[float, float, float, float]:
 
 
 def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
-    """One fixed body for ``shape``: collision and visual geometry, or visual only."""
-    pieces = _pieces(shape, cid, mesh_dir, collide)
+    """One fixed body for ``shape``: collision and visual geometry, or visual only. A collision
+    without a visual twin is not drawn (cameras see visuals only), nor is a piece of a mesh
+    collision beyond its visual parts."""
+    pieces = _pieces(shape, cid, mesh_dir, collide, draw=not collide or shape.twin is not None)
+    unseen = None
+    for i, (col, vis) in enumerate(pieces):
+        if col != -1 and vis == -1:
+            unseen = _unseen_visual(cid, mesh_dir) if unseen is None else unseen
+            pieces[i] = (col, unseen)
     (base_col, base_vis), links = pieces[0], pieces[1:]
     position, orientation = pose_from_xyz_rpy(shape.pose)
     body = pybullet.createMultiBody(
@@ -258,6 +315,8 @@ def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
         useMaximalCoordinates=_static_rigid(shape, collide, links), physicsClientId=cid)
     if body < 0:
         raise WorldError("%s: pybullet could not build %s" % (shape.name, shape.kind))
+    if egl_enabled(cid) and (not collide or shape.twin is not None):
+        view_culling.note_static_body(cid, body, shape)   # left out of images it cannot show
     for link in range(-1, len(links)) if collide else ():
         collision_filters.set_filter(cid, body, link, WORLD_COLLISION_GROUP,
                                      WORLD_COLLISION_MASK)
@@ -283,8 +342,10 @@ def _static_rigid(shape: Shape, collide: bool, links: list) -> bool:
     return not links and (not collide or shape.kind == "mesh")
 
 
-def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[int, int]]:
-    """(collision shape id or -1, visual shape id) per convex piece of ``shape``, in its frame.
+def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool,
+            draw: bool = True) -> List[Tuple[int, int]]:
+    """(collision shape id or -1, visual shape id or -1) per convex piece of ``shape``, in its
+    frame; without ``draw``, no visual shape is made.
 
     Box and plane visuals are mesh files too (``_mesh_visual``): pybullet's EGL renderer
     tessellates a GEOM_BOX through a convex hull that flattens a box about 800 times wider than
@@ -292,10 +353,10 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
     """
     rgba = shape.rgba
     if shape.kind == "mesh":
-        return _mesh_pieces(shape, cid, mesh_dir, collide)
+        return _mesh_pieces(shape, cid, mesh_dir, collide, draw)
     if shape.kind == "polyline":
         polygons = [shape.points] if _is_convex(shape.points) else _triangulate(shape)
-        return [_prism(polygon, shape.size[0], rgba, cid, mesh_dir, collide)
+        return [_prism(polygon, shape.size[0], rgba, cid, mesh_dir, collide, draw)
                 for polygon in polygons]
     if shape.kind in ("box", "plane"):
         if shape.kind == "box":
@@ -310,6 +371,8 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
         col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_BOX, **col_args)
                if collide else -1)
         hx, hy = half[0], half[1]
+        if not draw:
+            return [(col, -1)]
         if shape.texture is not None:
             path, rgba = _box_visual_file(shape, hx, hy, *z_range, cid, mesh_dir)
             return [(col, pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
@@ -323,7 +386,8 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
     else:
         col_args = vis_args = {"radius": shape.size[0]}
     col = bullet_shapes.collision_shape(cid, kind, **col_args) if collide else -1
-    vis = pybullet.createVisualShape(kind, rgbaColor=rgba, physicsClientId=cid, **vis_args)
+    vis = (pybullet.createVisualShape(kind, rgbaColor=rgba, physicsClientId=cid, **vis_args)
+           if draw else -1)
     return [(col, vis)]
 
 
@@ -333,11 +397,11 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> List[Tuple[
 TRIMESH_CHUNK = 40_000
 
 
-def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str,
-                 collide: bool) -> List[Tuple[int, int]]:
+def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool,
+                 draw: bool = True) -> List[Tuple[int, int]]:
     """A static mesh: its triangles as concave collision shapes of TRIMESH_CHUNK triangles or
-    fewer (a fixed body collides with the triangles themselves) and a visual per colour part;
-    the pieces after the first are links of its body."""
+    fewer (a fixed body collides with the triangles themselves) and, with ``draw``, a visual
+    per colour part; the pieces after the first are links of its body."""
     mesh = load_mesh(shape.mesh, shape.size)
     collisions = []
     if collide:   # pybullet takes a concave mesh of at most 131,072 vertices: in chunks
@@ -351,7 +415,7 @@ def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str,
     visuals = [pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
                                           rgbaColor=_part_colour(shape, rgba),
                                           physicsClientId=cid)
-               for path, rgba in _visual_files(shape, mesh, cid, mesh_dir)]
+               for path, rgba in (_visual_files(shape, mesh, cid, mesh_dir) if draw else ())]
     count = max(len(collisions), len(visuals))
     collisions += [-1] * (count - len(collisions))
     visuals += [-1] * (count - len(visuals))
@@ -359,14 +423,26 @@ def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str,
 
 
 def _prism(polygon: Sequence[Point], height: float, rgba, cid: int, mesh_dir: str,
-           collide: bool) -> Tuple[int, int]:
+           collide: bool, draw: bool = True) -> Tuple[int, int]:
     """A convex counter-clockwise polygon extruded from z 0 to ``height``: a convex-hull collision
-    shape (pybullet inflates it by its 1 mm collision margin) and a flat-shaded visual mesh of the
-    same solid."""
+    shape (pybullet inflates it by its 1 mm collision margin) and, with ``draw``, a flat-shaded
+    visual mesh of the same solid."""
     corners = [(x, y, z) for z in (0.0, height) for x, y in polygon]
     col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_MESH, vertices=corners)
            if collide else -1)
-    return col, _mesh_visual(polygon, 0.0, height, rgba, cid, mesh_dir)
+    return col, (_mesh_visual(polygon, 0.0, height, rgba, cid, mesh_dir) if draw else -1)
+
+
+def _unseen_visual(cid: int, mesh_dir: str) -> int:
+    """A visual shape that draws nothing (one triangle of no area, a file in ``mesh_dir``). A
+    body or link without a visual shape is drawn by pybullet's renderers as its collision shape
+    (white, or EGL's link colours); Gazebo's cameras never see collisions."""
+    path = os.path.join(mesh_dir, "unseen.obj")
+    if not os.path.isfile(path):
+        with open(path, "w") as f:
+            f.write("# one triangle of no area: nothing drawn\nv 0 0 0\nv 0 0 0\nv 0 0 0\n"
+                    "f 1 2 3\n")
+    return pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path, physicsClientId=cid)
 
 
 def _mesh_visual(polygon: Sequence[Point], z0: float, z1: float, rgba, cid: int,

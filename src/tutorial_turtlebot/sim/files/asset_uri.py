@@ -10,10 +10,16 @@ ROS plugins do.
   (``<export><gazebo_ros gazebo_model_path="${prefix}/models"/></export>``). Those exports come
   last because reading them means reading every package's manifest (about 0.1 s), which a
   world of stock models never needs.
-- A model folder holds ``model.config``, whose ``<sdf version="X">file</sdf>`` entries name one
-  SDF file per version; Gazebo 11 takes the highest version it reads (up to 1.7), and never one
-  that is no version ("-1", "1.x"). model.config and the SDF file must be regular files
-  (file_read), model.config at most file_read.MAX_MODEL_CONFIG_BYTES.
+- A model folder holds ``model.config`` (or the older ``manifest.xml``), whose ``<sdf
+  version="X">file</sdf>`` entries name one SDF file per version. Read as Gazebo 11 reads it
+  (sdformat 9's getModelFilePath, with TinyXML 2.6): only those entries matter, and the text is
+  read as leniently as TinyXML reads it (``read_model_config``: a bare ``&``, an unknown entity,
+  an unquoted attribute value, a DOCTYPE, control characters). The highest version up to 1.7 is
+  taken; if no entry has such a version (none, "-1", "1.x", "2.0"), the first ``<sdf>`` entry
+  is. A folder without model.config, a model.config that is still not XML or that names no file
+  is ``ModelLeftOut``: Gazebo leaves the model out and loads the rest, and so does the world
+  loader. model.config and the SDF file must be regular files (file_read), model.config at most
+  file_read.MAX_MODEL_CONFIG_BYTES: anything else is refused.
 - ``package://PKG/rest`` is PKG's folder from rospkg, else a model folder called PKG.
 - ``file://path`` and a bare path are absolute, or relative. A relative one is looked for as
   Gazebo looks: in the folder of the file that names it (the model's folder), then the working
@@ -25,9 +31,11 @@ only in letter case (Gazebo on Linux does not take it either) and, for ``model:/
 Gazebo's online models can be had.
 """
 import os
+import re
 from typing import Callable, Iterable, List, Optional, Sequence, Tuple
 
-from ...errors import WorldError
+from ...errors import UserError, WorldError
+from . import xml_reader
 from .file_read import MAX_MODEL_CONFIG_BYTES, not_regular, read_file
 from ...package_data import data_dir
 
@@ -42,7 +50,20 @@ class AssetError(WorldError):
 
 class AssetNotFound(AssetError):
     """The file or model folder a URI names is in none of the places searched (a world loads
-    without it, as in Gazebo: world_sdf makes it a warning)."""
+    without it, as in Gazebo: world_sdf makes it a warning). ``str(err)`` names every folder
+    searched; ``short`` is the same line without them, and ``searched`` the folders alone (a
+    world's loader says them once, however many URIs are missing)."""
+
+    def __init__(self, message: str, short: str = "", searched: str = ""):
+        super().__init__(message)
+        self.short = short or message
+        self.searched = searched
+
+
+class ModelLeftOut(AssetNotFound):
+    """A model folder Gazebo finds but cannot take a file from: no model.config, a model.config
+    that is not XML even to TinyXML, or one that names no SDF file (a world loads without the
+    model, as in Gazebo: world_sdf makes it a warning)."""
 
 
 # Gazebo 11 fetches a model:// it cannot find from its online model database; those models
@@ -72,12 +93,14 @@ def case_mismatch(path: str) -> Optional[str]:
     return head if missing else None
 
 
-def _case_note(candidates: Iterable[str]) -> str:
+def _case_note(candidates: Iterable[str], brief: bool = False) -> str:
     """"; X exists, whose name differs only in letter case (...)" for the first of the missing
-    ``candidates`` that has such a twin; "" if none has."""
+    ``candidates`` that has such a twin; "" if none has. ``brief``: without the "(...)"."""
     for candidate in candidates:
         twin = case_mismatch(candidate)
         if twin is not None:
+            if brief:
+                return "; %s exists (its name differs in letter case)" % twin
             return ("; %s exists, whose name differs only in letter case (file names are "
                     "case-sensitive, as in Gazebo on Linux: fix the URI or the file name)"
                     % twin)
@@ -182,9 +205,14 @@ def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None)
     if scheme == "model":
         found = model_path.find(rest.strip("/"))
         if found is None:
-            note = _case_note(os.path.join(f, rest.strip("/")) for f in model_path.folders())
+            tried = [os.path.join(f, rest.strip("/")) for f in model_path.folders()]
+            note = _case_note(tried)
+            searched = "model:// searched %s; %s" % (model_path.describe(), MODEL_DATABASE_HINT)
             raise AssetNotFound("%s not found: searched %s%s; %s"
-                                % (uri, model_path.describe(), note, MODEL_DATABASE_HINT))
+                                % (uri, model_path.describe(), note, MODEL_DATABASE_HINT),
+                                short="%s not found%s"
+                                      % (uri, _case_note(tried, brief=True)),
+                                searched=searched)
         return found
     if scheme == "package":
         package, _, inner = rest.partition("/")
@@ -192,10 +220,14 @@ def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None)
         if root is None:
             found = model_path.find(rest.strip("/"))
             if found is None:
+                packages = os.environ.get("ROS_PACKAGE_PATH", "unset")
                 raise AssetNotFound("%s: no ROS package %r on ROS_PACKAGE_PATH (%s) and no model "
                                  "folder of that name in %s"
-                                 % (uri, package, os.environ.get("ROS_PACKAGE_PATH", "unset"),
-                                    model_path.describe()))
+                                 % (uri, package, packages, model_path.describe()),
+                                 short="%s: no ROS package %r and no model folder of that name"
+                                       % (uri, package),
+                                 searched="package:// searched ROS_PACKAGE_PATH (%s), then %s"
+                                          % (packages, model_path.describe()))
             return found
         path = os.path.join(root, inner)
     else:
@@ -223,10 +255,15 @@ def _relative(uri: str, rest: str, base_dir: str, model_path: ModelPath) -> str:
                 return candidate
             tried.append(candidate)
     resource = ":".join(model_path.resource_folders()) or "unset"
+    note = _case_note(tried)
     raise AssetNotFound("%s not found: searched the folder of the file naming it (%s), the "
                         "working directory (%s), GAZEBO_RESOURCE_PATH (%s), %s%s"
                         % (uri, os.path.abspath(base_dir), os.getcwd(), resource,
-                           model_path.describe(), _case_note(tried)))
+                           model_path.describe(), note),
+                        short="%s not found%s" % (uri, _case_note(tried, brief=True)),
+                        searched="relative paths searched the naming file's folder, the working "
+                                 "directory (%s), GAZEBO_RESOURCE_PATH (%s), %s"
+                                 % (os.getcwd(), resource, model_path.describe()))
 
 
 _ROSPACK = {}   # ROS_PACKAGE_PATH -> its rospkg.RosPack (each new one scans the whole path)
@@ -248,35 +285,103 @@ def _package_path(package: str) -> Optional[str]:
 
 def _version(text: str) -> Tuple[int, ...]:
     """An SDF version "1.6" as (1, 6, 0); () for what is no version (Gazebo's SemanticVersion
-    reads "-1", "1.x" or "" as 0.0.0, which it never takes)."""
+    reads "-1", "1.x" or "" as 0.0.0, which is never better than another)."""
     parts = text.strip().split(".")
-    if not 1 <= len(parts) <= 3 or not all(p.isascii() and p.isdigit() for p in parts):
+    # (a part of more than 9 digits is no version: 5,000 digits overran Python's int() limit)
+    if not 1 <= len(parts) <= 3 or not all(p.isascii() and p.isdigit() and len(p) <= 9
+                                           for p in parts):
         return ()
     version = tuple(int(p) for p in parts) + (0,) * (3 - len(parts))
     return version if version > (0, 0, 0) else ()
 
 
-def model_sdf_file(model_dir: str, parse_xml) -> str:
-    """The SDF file of the model folder ``model_dir``: of the ``<sdf version>`` entries of its
-    model.config, the highest version Gazebo 11 reads. ``parse_xml(data, source)`` is the
-    line-numbered XML reader (xml_reader.parse raising the caller's error). AssetError if there
-    is none."""
-    config = os.path.join(model_dir, "model.config")
-    if not os.path.lexists(config):
-        raise AssetError("%s has no model.config (a Gazebo model folder needs one)" % model_dir)
-    root = parse_xml(read_file(config, MAX_MODEL_CONFIG_BYTES, "model.config", AssetError),
-                     config)
-    entries = []
-    for node in root.all("sdf"):
+# What TinyXML 2.6 reads and expat does not, made into XML expat reads (line numbers kept):
+_ENTITY = re.compile(r"&(?!(?:amp|lt|gt|quot|apos|#[0-9]+|#x[0-9a-fA-F]+);)")
+_DECLARATION = re.compile(r"<\?.*?\?>|<!DOCTYPE(?:[^\[>]|\[[^\]]*\])*>", re.S)
+_START_TAG = re.compile(r"<[A-Za-z_][^<>]*>")
+_ATTRIBUTE = re.compile(r"(\s[^\s=<>/]+\s*=\s*)(\"[^\"]*\"|'[^']*'|[^\s\"'/>]+)")
+_STRAY_LT = re.compile(r"<(?![A-Za-z_/!?])")
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f]")
+
+
+def _quoted(match) -> str:
+    """An attribute ``name=value`` with its value in quotes (it keeps them if it had some)."""
+    value = match.group(2)
+    return match.group(0) if value[0] in "\"'" else '%s"%s"' % (match.group(1), value)
+
+
+def _as_tinyxml_reads_it(text: str) -> str:
+    """``text`` with what TinyXML 2.6 tolerates written as XML: a ``&`` that starts no entity
+    it knows is a literal ``&`` (TiXmlBase::GetEntity), an attribute value may go unquoted
+    (TiXmlAttribute::Parse), a DOCTYPE is an unknown node it passes over, a ``<`` that starts
+    no tag is text, control characters are text. Declarations go (they name an encoding that
+    no longer applies); every newline stays, so line numbers stay."""
+    text = _DECLARATION.sub(lambda m: "\n" * m.group(0).count("\n"), text)
+    text = _CONTROL.sub(" ", text)
+    text = _START_TAG.sub(lambda m: _ATTRIBUTE.sub(_quoted, m.group(0)), text)
+    text = _STRAY_LT.sub("&lt;", text)
+    return _ENTITY.sub("&amp;", text)
+
+
+def read_model_config(data: bytes, source: str) -> xml_reader.Element:
+    """The root element of a model.config's bytes, read as leniently as Gazebo 11 reads it
+    (TinyXML 2.6); ModelLeftOut (one line) if even that cannot read it."""
+    try:
+        return xml_reader.parse(data, source, UserError)
+    except UserError as strict:
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError:
+            text = data.decode("latin-1")     # TinyXML reads bytes as they are
+        try:
+            return xml_reader.parse(_as_tinyxml_reads_it(text), source, UserError)
+        except UserError:
+            raise _left_out(source, "%s; Gazebo (TinyXML) cannot read it either: the model "
+                                    "is left out" % str(strict)[len(source):]) from None
+
+
+def _left_out(config: str, problem: str) -> "ModelLeftOut":
+    """ModelLeftOut of ``problem`` (":line: ..." or ": ...") with a model.config: named by its
+    whole path, and in ``short`` by its model folder's name alone (a warning line)."""
+    short = os.path.join(os.path.basename(os.path.dirname(config)), os.path.basename(config))
+    return ModelLeftOut(config + problem, short=short + problem)
+
+
+def _config_file(model_dir: str) -> str:
+    """The model folder's model.config, else its manifest.xml (which sdformat 9 still reads,
+    with a warning); ModelLeftOut if it has neither."""
+    for name in ("model.config", "manifest.xml"):
+        path = os.path.join(model_dir, name)
+        if os.path.lexists(path):
+            return path
+    raise ModelLeftOut("%s has no model.config: Gazebo leaves the model out" % model_dir,
+                       short="%s has no model.config: Gazebo leaves the model out"
+                             % os.path.basename(os.path.normpath(model_dir)))
+
+
+def model_sdf_file(model_dir: str) -> str:
+    """The SDF file of the model folder ``model_dir``, chosen from its model.config's ``<sdf
+    version>`` entries as sdformat 9 chooses it (getBestSupportedModelVersion): the highest
+    version up to 1.7, else the first entry. ModelLeftOut (the world loads without the model)
+    for no model.config, one even TinyXML cannot read, or one naming no file; AssetError (the
+    world is refused) for a model.config or SDF file that is no regular file or too big."""
+    config = _config_file(model_dir)
+    root = read_model_config(read_file(config, MAX_MODEL_CONFIG_BYTES, "model.config",
+                                       AssetError), config)
+    if root.tag != "model":
+        raise _left_out(config, ":%d: the root element is <%s>, not <model>: Gazebo leaves "
+                                "the model out" % (root.line, root.tag))
+    entries = root.all("sdf")
+    chosen, best = (entries[0] if entries else None), ()
+    for node in entries:
         version = _version(node.attrib.get("version", ""))
-        if node.value and version and version <= MAX_SDF_VERSION + (0,):
-            entries.append((version, node.value))
-    if not entries:
-        raise AssetError("%s:%d: model.config names no <sdf version=\"1.x\">file</sdf> of "
-                         "version 1.7 or older" % (config, root.line))
-    _, name = max(entries)
-    path = os.path.join(model_dir, name)
+        if version and version > best and version <= MAX_SDF_VERSION + (0,):
+            chosen, best = node, version
+    if chosen is None or not chosen.value:
+        raise _left_out(config, ":%d: it names no <sdf version=\"1.x\">file</sdf>: Gazebo "
+                                "leaves the model out" % root.line)
+    path = os.path.join(model_dir, chosen.value)
     why = not_regular(path)
     if why is not None:
-        raise AssetError("%s: its model.config names %s: %s" % (model_dir, name, why))
+        raise AssetError("%s: its model.config names %s: %s" % (model_dir, chosen.value, why))
     return path

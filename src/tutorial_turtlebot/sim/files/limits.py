@@ -42,6 +42,15 @@ MAX_ACCELERATION = 1e6      # m/s^2: a wheel's acceleration
 MIN_WHEEL_SIZE = 0.01       # m: a diff drive's wheel diameter and wheel separation (a wheel
                             # spins at the speed over its radius, a turn is rim speeds over the
                             # separation)
+MAX_DAMPING = 1e6           # N m s/rad (N s/m): a joint's viscous damping
+# A URDF's tree, bounded for what one load may cost (Gazebo has no such limits; its robots have
+# tens of links): pybullet's importer merges fixed links recursively, printing a line per level
+# of depth (a 400-link chain: 80 KB), and the readers here walk the tree recursively (a chain of
+# 1,000 links overran Python's recursion limit)
+MAX_URDF_LINKS = 1000       # links in one URDF
+MAX_URDF_DEPTH = 500        # joints from the root link to the farthest link
+MAX_MOVING_JOINTS = 127     # joints that are not fixed, per URDF: pybullet builds no more in one
+                            # body (a chain of 128 revolute joints fails to load)
 # Names (models, links, joints, frames, namespaces, topics) and the other string fields
 MAX_NAME = 256              # characters
 

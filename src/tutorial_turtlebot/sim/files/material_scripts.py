@@ -7,7 +7,7 @@ wins. Of ``material NAME { technique { pass { ... } } }`` only the first techniq
 is used: its ``diffuse r g b [a]`` (else ``ambient``) colour and the image of its first
 ``texture_unit``'s ``texture FILE``. The image is looked for in each ``<uri>`` folder, and in the
 ``textures`` folder beside a ``scripts`` folder (as Gazebo adds them to its resource paths);
-it is used if it is a PNG or JPEG file that mesh_file.image_problem takes. ``material A : B``
+it is used if it is a PNG or JPEG file that texture_images.image_problem takes. ``material A : B``
 takes from B what A's pass does not set. Shaders, further passes and texture units, scrolling,
 blending and the like are left out without a word.
 
@@ -26,6 +26,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 from ...errors import UserError
 from .file_read import MAX_MESH_SIDE_FILE_BYTES, MAX_XML_FILE_BYTES, not_regular, read_file
+from .texture_images import image_problem
 
 Rgba = Tuple[float, float, float, float]
 WHITE: Rgba = (1.0, 1.0, 1.0, 1.0)
@@ -330,7 +331,6 @@ class MaterialScripts:
     def _image_problem(self, path: str) -> Optional[str]:
         """Why the file ``path`` is no texture drawn here (one line), or None; checked once."""
         if path not in self._textures:
-            from .mesh_file import image_problem
             why = not_regular(path)
             if why is None:
                 try:

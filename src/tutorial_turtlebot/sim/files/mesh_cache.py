@@ -1,8 +1,8 @@
 """Converted meshes kept on disk, so that a world's meshes are read once, not at every start.
 
 No ROS and no pybullet here. An entry is one ``.npz`` file (numpy arrays and a JSON header,
-no pickle) holding a file's ``mesh_file.Mesh`` as read, unscaled. Its name is a digest of
-the converter's own source (mesh_file.py and this file: any change of them is a new cache),
+no pickle) holding a file's ``mesh_types.Mesh`` as read, unscaled. Its name is a digest of
+the converter's own source (CONVERTER_SOURCES: any change of them is a new cache),
 the mesh file's real path and the sha256 of its bytes; the header lists every file the reader
 read beside it (an OBJ's .mtl, a Collada's images) with the sha256 of its bytes, any file a
 part names (a texture) the same way, and the names in the mesh's folder (a texture that was
@@ -14,13 +14,13 @@ Where: ``$ROS_HOME/tutorial_turtlebot/mesh_cache``, else
 the entries used least recently removed first (a hit renews an entry's time). Files are
 written to a temporary name and renamed, so that a reader never sees half an entry. A cache
 that is corrupt, truncated, of another version or not writable never fails a load: the mesh is
-read from its file, and one line on stderr says so, once per process.
+read from its file, and one line (``warning_sink``: stderr, or the node's log) says so, once
+per process.
 
-``obj_parts`` keeps the Wavefront files of mesh_file.write_obj_parts the same way (a folder an
-entry, by a digest of the mesh's content), so that pybullet reads files written once.
-
-``convert_ahead`` converts the meshes a world names in a process pool of one worker a core
-before the world is read, filling the cache; the world's reading then finds them there.
+``obj_parts`` keeps the Wavefront files of obj_writer.write_obj_parts the same way (a folder an
+entry, by a digest of the mesh's content), so that pybullet reads files written once;
+``visual_obj_parts`` those of a visual, its textures halved as the texture budget says.
+mesh_prefetch fills the cache with a world's meshes before the world is read.
 """
 import dataclasses
 import hashlib
@@ -34,13 +34,12 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import file_read
+from .mesh_types import Mesh, MeshPart
+from .obj_writer import texture_copy, write_obj_parts
 
 MAX_CACHE_BYTES = 1024 ** 3      # 1 GiB of entries and OBJ folders, least recently used out
+MAX_WARNING_CHARS = 200          # a warning line is at most this long
 FORMAT = 1                       # the header's "format"
-# A pool starts only for at least this many meshes to convert: a worker costs about 0.2 s of
-# CPU to start (a fresh Python importing numpy), the time to read a few small meshes.
-MIN_POOL_FILES = 4
 
 _lock = threading.RLock()
 _warned = False
@@ -59,25 +58,44 @@ def cache_dir(environ=os.environ) -> str:
     return os.path.join(base, "tutorial_turtlebot", "mesh_cache")
 
 
+def _to_stderr(line: str) -> None:
+    sys.stderr.write("tutorial_turtlebot: %s\n" % line)
+
+
+# Where warn_once's line goes: stderr, unless the process says otherwise (the /gazebo node:
+# rospy's log).
+warning_sink: Callable[[str], None] = _to_stderr
+
+
 def warn_once(message: str) -> None:
-    """One line on stderr, the first time only."""
+    """One line (at most MAX_WARNING_CHARS characters) to ``warning_sink``, the first time
+    only."""
     global _warned
     with _lock:
         if _warned:
             return
         _warned = True
-    sys.stderr.write("tutorial_turtlebot: mesh cache %s: %s; meshes are read from their "
-                     "files\n" % (cache_dir(), " ".join(str(message).split())[:200]))
+    head = "mesh cache %s: " % cache_dir()
+    tail = "; meshes are read from their files"
+    room = max(MAX_WARNING_CHARS - len(head) - len(tail), 40)
+    text = " ".join(str(message).split())
+    warning_sink(head + (text if len(text) <= room else text[:room - 3] + "...") + tail)
+
+
+# The modules whose code makes a cached Mesh or OBJ file (any change of them is a new cache).
+CONVERTER_SOURCES = ("mesh_types.py", "mesh_file.py", "mesh_lru.py", "mesh_side_files.py",
+                     "collada_reader.py", "stl_obj_reader.py", "texture_images.py",
+                     "obj_writer.py", "mesh_cache.py")
 
 
 def converter_digest() -> str:
-    """sha256 of the source of mesh_file.py and mesh_cache.py (the converter)."""
+    """sha256 of the source of the converter (CONVERTER_SOURCES, beside this file)."""
     global _converter
     if _converter is None:
-        from . import mesh_file
         h = hashlib.sha256(b"tutorial_turtlebot mesh cache %d\0" % FORMAT)
-        for module in (mesh_file.__file__, __file__):
-            with open(module, "rb") as f:
+        here = os.path.dirname(os.path.abspath(__file__))
+        for name in CONVERTER_SOURCES:
+            with open(os.path.join(here, name), "rb") as f:
                 h.update(f.read())
             h.update(b"\0")
         _converter = h.hexdigest()
@@ -125,7 +143,6 @@ def _encode(value, arrays: List[np.ndarray]):
 
 
 def _decode(value, arrays):
-    from . import mesh_file
     if isinstance(value, dict):
         if "array" in value:
             array = arrays["a%d" % value["array"]]
@@ -133,7 +150,7 @@ def _decode(value, arrays):
             return array
         if "tuple" in value:
             return tuple(_decode(v, arrays) for v in value["tuple"])
-        cls = {"Mesh": mesh_file.Mesh, "MeshPart": mesh_file.MeshPart}[value["class"]]
+        cls = {"Mesh": Mesh, "MeshPart": MeshPart}[value["class"]]
         return cls(**{k: _decode(v, arrays) for k, v in value["fields"].items()})
     return value
 
@@ -175,10 +192,15 @@ def _side_ok(side: Sequence) -> bool:
 
 # --- entries ----------------------------------------------------------------------------------
 
+def entry_path(path: str, digest: str) -> str:
+    """The entry of the mesh file ``path`` of sha256 ``digest`` (it may not exist)."""
+    return os.path.join(cache_dir(), _entry_name(path, digest) + ".npz")
+
+
 def load(path: str, digest: str):
     """The Mesh stored for the file ``path`` of sha256 ``digest``, or None (not there, stale,
     or unreadable: then one warning)."""
-    entry = os.path.join(cache_dir(), _entry_name(path, digest) + ".npz")
+    entry = entry_path(path, digest)
     try:
         with np.load(entry, allow_pickle=False) as npz:
             header = json.loads(bytes(npz["header"]).decode("utf-8"))
@@ -232,7 +254,7 @@ def store(path: str, digest: str, mesh, side_files: Iterable[Tuple[str, str]]) -
 
 def obj_parts(mesh, directory: str, write: Callable,
               options=()) -> List[Tuple[str, Optional[tuple]]]:
-    """``write(mesh, folder)``'s answer (mesh_file.write_obj_parts: [(file, rgba)]) for files
+    """``write(mesh, folder)``'s answer (obj_writer.write_obj_parts: [(file, rgba)]) for files
     kept in the cache, written once for the mesh's content and ``options`` (what else ``write``
     depends on: JSON values); in ``directory`` if the cache cannot be used."""
     try:
@@ -372,169 +394,27 @@ def forget_state() -> None:
     global _total, _warned, _converter
     _total, _warned, _converter = None, False, None
     _digests.clear()
-    _failures.clear()
 
 
-# --- converting a world's meshes ahead, in parallel ---------------------------------------------
+# --- visuals ------------------------------------------------------------------------------------
 
-def visual_obj_parts(mesh, directory: str, textured: bool) -> List[Tuple[str, Optional[tuple]]]:
-    """``obj_parts`` of a visual mesh, drawn with its textures or not (world_bullet)."""
-    from .mesh_file import write_obj_parts
-    return obj_parts(mesh, directory, lambda m, d: write_obj_parts(m, d, textures=textured),
-                     options=["textures", bool(textured)])
+def visual_obj_parts(mesh, directory: str, halvings: Optional[Dict[str, int]] = None
+                     ) -> List[Tuple[str, Optional[tuple]]]:
+    """``obj_parts`` of a visual mesh (world_bullet): without textures for ``halvings`` None,
+    else with each texture of ``halvings`` (texture path -> times halved: the texture budget,
+    rendering.plan_textures), the others left out."""
+    if halvings is None:
+        return obj_parts(mesh, directory, lambda m, d: write_obj_parts(m, d, textures=False),
+                         options=["textures", False])
 
+    def write(m, folder):
+        copies: Dict[str, Optional[str]] = {}    # texture -> its image file in folder
 
-def _convert(items) -> Dict[str, List[str]]:
-    """Read each (path, [scale]) of ``items`` into the cache, and write the OBJ files of each
-    scale as a visual drawn in the file's own colours and textures would need them (a visual
-    with an SDF <material>, or a collision, makes no use of them: they are written when built).
-    Returns path -> [error class name, line] of the files that could not be read."""
-    from . import mesh_file
-    failed = {}
-    for path, scales in items:
-        try:
-            mesh_file.load_mesh(path)
-        except mesh_file.MeshError as err:
-            failed[path] = [type(err).__name__, str(err)]
-            continue
-        except Exception:   # the world's reading meets it again and names it
-            continue
-        for scale in scales:
-            try:
-                mesh = mesh_file.load_mesh(path, scale)
-                textured = any(getattr(p, "texture", None) is not None for p in mesh.parts)
-                with tempfile.TemporaryDirectory() as folder:
-                    visual_obj_parts(mesh, folder, textured)
-            except Exception:   # a scale refused, no OBJ: the world's building meets it
-                continue
-    return failed
-
-
-def _worker() -> None:
-    """A pool worker (``python3 -c``): reads a JSON list of mesh files on stdin, reads each
-    into the cache, writes a JSON object of path -> [error class name, line] of those that
-    failed on stdout."""
-    sys.stdout.write(json.dumps(_convert(json.loads(sys.stdin.read()))))
-
-
-def _shares(paths: List[str], count: int) -> List[List[str]]:
-    """``paths`` in ``count`` lists of about the same bytes, the biggest file first."""
-    shares: List[List[str]] = [[] for _ in range(count)]
-    loads = [0] * count
-    for path in sorted(paths, key=lambda p: -os.path.getsize(p)):
-        least = loads.index(min(loads))
-        shares[least].append(path)
-        loads[least] += os.path.getsize(path)
-    return [share for share in shares if share]
-
-
-def convert_ahead(paths: Iterable[str], workers: Optional[int] = None,
-                  scales: Optional[Dict[str, list]] = None) -> Dict[str, tuple]:
-    """Read the mesh files ``paths`` not in the cache yet into it, in ``workers`` processes
-    (default: one a core): this one and new ones, each a fresh Python (no fork of a process
-    with threads), the files shared out by size; with the OBJ files of ``scales[path]``
-    (scales the world uses the file at) as ``_convert`` says. Returns
-    path -> (error class name, line) of the files that failed (load_mesh raises those
-    again). Fewer than MIN_POOL_FILES files to read, or one core: nothing is done here (the
-    world's reading reads them one by one)."""
-    todo = []
-    for path in dict.fromkeys(paths):
-        try:
-            entry = os.path.join(cache_dir(), _entry_name(path, file_digest(path)) + ".npz")
-        except OSError:
-            continue   # missing or unreadable: its reading says so
-        if not os.path.isfile(entry):
-            todo.append(path)
-    workers = workers or os.cpu_count() or 1
-    if len(todo) < MIN_POOL_FILES or workers < 2:
-        return {}
-    import subprocess
-    package_root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-        [package_root] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
-    procs = []
-    failed: Dict[str, tuple] = {}
-    scales = scales or {}
-    own, *shares = [[(path, scales.get(path, [])) for path in share]   # this process reads
-                    for share in _shares(todo, min(workers, len(todo)))]   # a share too
-    try:
-        for share in shares:
-            proc = subprocess.Popen(
-                [sys.executable, "-c",
-                 "from tutorial_turtlebot.sim.files.mesh_cache import _worker; _worker()"],
-                stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                env=env)
-            proc.stdin.write(json.dumps(share).encode("utf-8"))
-            proc.stdin.close()
-            procs.append(proc)
-        failed.update((k, tuple(v)) for k, v in _convert(own).items())
-        for proc in procs:
-            out = proc.stdout.read()
-            proc.wait()
-            try:
-                failed.update((k, tuple(v)) for k, v in json.loads(out or b"{}").items())
-            except (ValueError, TypeError, AttributeError):
-                pass   # a worker that died: the world's reading reads its files
-    except OSError:
-        pass           # no process could start: the same
-    finally:
-        for proc in procs:
-            if proc.poll() is None:
-                proc.kill()
-                proc.wait()
-    return failed
-
-
-# --- noting a world's meshes --------------------------------------------------------------------
-
-_noting = threading.local()
-
-
-def noted_paths() -> Optional[list]:
-    """While ``convert_world`` reads a world first: the list load_mesh notes (file, scale) in
-    (and reads nothing); else None."""
-    return getattr(_noting, "paths", None)
-
-
-def convert_world(read: Callable[[], object], path: Optional[str] = None) -> None:
-    """Call ``read()`` (a world's reading) with load_mesh noting the mesh files it is asked
-    for instead of reading them (its errors are left to the real reading), then
-    ``convert_ahead`` them; their failures are kept for load_mesh to raise. Nothing is done
-    if the world file ``path`` names no ``<mesh>`` and no ``<include>``."""
-    if path is not None:
-        if file_read.not_regular(path) is not None:
-            return     # a FIFO would hang here; the real reading refuses it
-        try:
-            with open(path, "rb") as f:
-                text = f.read(file_read.MAX_XML_FILE_BYTES)
-            if b"<mesh" not in text and b"<include" not in text:
-                return
-        except OSError:
-            return     # the real reading names the fault
-    _noting.paths = paths = []
-    try:
-        read()
-    except Exception:
-        pass
-    finally:
-        _noting.paths = None
-    if paths:
-        scales: Dict[str, list] = {}
-        for path, scale in paths:
-            if list(scale) not in scales.setdefault(path, []):
-                scales[path].append(list(scale))
-        for path, failure in convert_ahead(list(scales), scales=scales).items():
-            try:
-                st = os.stat(path)
-            except OSError:
-                continue
-            _failures[(os.path.realpath(path), st.st_mtime_ns, st.st_size)] = failure
-
-
-_failures: Dict[tuple, Tuple[str, str]] = {}
-
-
-def failure(file_key: tuple) -> Optional[Tuple[str, str]]:
-    """(error class name, line) a pool worker met reading the file of ``file_key`` ((real
-    path, mtime ns, size)), once; None if none."""
-    return _failures.pop(file_key, None)
+        def images(texture):
+            if texture not in copies:
+                copies[texture] = (texture_copy(texture, folder, halvings[texture])
+                                   if texture in halvings else None)
+            return copies[texture]
+        return write_obj_parts(m, folder, images=images)
+    drawn = [halvings.get(part.texture) if part.texture else None for part in mesh.parts]
+    return obj_parts(mesh, directory, write, options=["halvings", drawn])

@@ -113,6 +113,8 @@ class Joint:
     child: str
     origin: Origin = Origin()
     axis: Vector3 = (1.0, 0.0, 0.0)
+    friction: float = 0.0          # N m (N): the <dynamics> friction that holds it still
+    damping: float = 0.0           # N m s/rad (N s/m): <dynamics> damping (not simulated)
 
 
 @dataclass(frozen=True)
@@ -277,6 +279,9 @@ class _Reader(XmlReader):
             links[link.name] = link
         if not links:
             self.fail(root, "no <link> in robot %r" % name)
+        if len(links) > limits.MAX_URDF_LINKS:
+            self.fail(root, "robot %r has %d links, more than the %d one URDF may have"
+                      % (name, len(links), limits.MAX_URDF_LINKS))
         joints: Dict[str, Joint] = {}
         parent_of: Dict[str, Element] = {}
         for elem in root.findall("joint"):
@@ -302,13 +307,26 @@ class _Reader(XmlReader):
         if len(roots) > 1:
             self.fail(root, "%d root links (%s): links must form one tree joined by joints"
                        % (len(roots), ", ".join(roots)))
-        reached, todo = {roots[0]}, [roots[0]]
+        below: Dict[str, List[str]] = {}
+        for joint in joints.values():
+            below.setdefault(joint.parent, []).append(joint.child)
+        depth = {roots[0]: 0}
+        todo = [roots[0]]
         while todo:
             parent = todo.pop()
-            for joint in joints.values():
-                if joint.parent == parent and joint.child not in reached:
-                    reached.add(joint.child)
-                    todo.append(joint.child)
+            for child in below.get(parent, ()):
+                if child not in depth:
+                    depth[child] = depth[parent] + 1
+                    if depth[child] > limits.MAX_URDF_DEPTH:
+                        self.fail(root, "link %r is %d joints from root link %r: a chain may "
+                                  "be at most %d deep" % (child, depth[child], roots[0],
+                                                          limits.MAX_URDF_DEPTH))
+                    todo.append(child)
+        reached = depth
+        moving = sum(1 for joint in joints.values() if joint.type != "fixed")
+        if moving > limits.MAX_MOVING_JOINTS:
+            self.fail(root, "%d joints that move: pybullet builds at most %d in one body"
+                      % (moving, limits.MAX_MOVING_JOINTS))
         if len(reached) < len(links):
             lost = [name for name in links if name not in reached]
             self.fail(root, "links %s form a loop cut off from root link %r"
@@ -429,7 +447,22 @@ class _Reader(XmlReader):
             problem = limits.symmetric("xyz", axis, limits.MAX_POSITION, "")
             if problem:   # a direction: its length must not overflow
                 self.fail(axis_elem, problem, owner)
-        return Joint(name, kind, ends[0], ends[1], self._origin(elem, owner), axis)
+        friction = damping = 0.0
+        dynamics = elem.find("dynamics")
+        if dynamics is not None:
+            for key, high, unit in (("friction", limits.MAX_FORCE, "N m or N"),
+                                    ("damping", limits.MAX_DAMPING, "N m s/rad or N s/m")):
+                if key in dynamics.attrib:
+                    value = self._number(dynamics, key, owner)
+                    problem = limits.outside("dynamics " + key, value, 0.0, high, unit)
+                    if problem:
+                        self.fail(dynamics, problem, owner)
+                    if key == "friction":
+                        friction = value
+                    else:
+                        damping = value
+        return Joint(name, kind, ends[0], ends[1], self._origin(elem, owner), axis,
+                     friction, damping)
 
     def _origin(self, elem, owner) -> Origin:
         origin = elem.find("origin")

@@ -8,7 +8,7 @@ Wavefront files instead, in metres:
 - a mesh ``<visual>`` becomes one ``<visual>`` per colour part of the mesh, each in the URDF
   ``<material>``'s colour where the visual has one (it overrides the mesh's own colours and
   textures), else in the part's colour from the file (none: pybullet's default) and with its
-  texture where it has one (mesh_file.write_obj_parts; a texture that cannot be used leaves
+  texture where it has one (obj_writer.write_obj_parts; a texture that cannot be used leaves
   the part in its colour). ``textured_urdf`` tells whether a URDF text names such a file;
 - a mesh ``<collision>`` becomes one file of the mesh's convex hull: pybullet collides a moving
   body's mesh as its convex hull (Gazebo's ODE collides with the triangles themselves).
@@ -31,7 +31,10 @@ from xml.etree import ElementTree
 import numpy as np
 
 from .asset_uri import resolve_uri
-from .mesh_file import Mesh, MeshPart, convex_hull_vertices, load_mesh, write_obj_parts
+from .convex_hull import convex_hull_vertices
+from .mesh_file import load_mesh
+from .mesh_types import Mesh, MeshPart
+from .obj_writer import write_obj_parts
 from .urdf_file import mesh_scale
 from ...errors import UserError
 
@@ -248,12 +251,15 @@ BARE_LINK_INERTIA = 1e-12
 def bullet_urdf_text(robot: ElementTree.Element, base_dir: str) -> str:
     """The URDF text pybullet loads (engine/urdf_loader) of a copy of the parsed ``<robot>``:
     its meshes rewritten by ``bullet_meshes`` (relative to ``base_dir``), each link without an
-    ``<inertial>`` (a bare frame: base_footprint, base_scan, ...) given next to no mass, one
-    element a line (``urdf_text``). Gazebo drops a bare frame's link or merges it with no
+    ``<inertial>`` (a bare frame: base_footprint, base_scan, ...) given next to no mass, joint
+    damping left out (not simulated: pybullet's adds energy), one element a line
+    (``urdf_text``). Gazebo drops a bare frame's link or merges it with no
     mass; pybullet would give it 1 kg, which merged into a Burger's chassis would triple it."""
     robot = copy.deepcopy(robot)
     if next(robot.iter("mesh"), None) is not None:
         bullet_meshes(robot, base_dir)
+    for dynamics in robot.iter("dynamics"):   # pybullet's joint damping adds energy (a joint
+        dynamics.set("damping", "0")          # of damping 0.02 spun up to its velocity limit)
     for link in robot.iter("link"):
         if link.find("inertial") is None:
             inertial = ElementTree.SubElement(link, "inertial")

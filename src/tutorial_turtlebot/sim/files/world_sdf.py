@@ -1,44 +1,37 @@
-"""Worlds: the catalogue of this package's SDF worlds and a loader for the SDF subset they use.
+"""The SDF world loader: a world file (or a spawn request's model) read into plain data
+(world_types: ``World``, ``Shape``, ``Link``, ``Model``, ``Actor``) that engine.world_bullet
+turns into bodies. No ROS and no pybullet here.
 
-No ROS and no pybullet here: a world becomes plain data (``World``, ``Shape``) that
-``world_bullet`` turns into bodies.
+What is read follows Gazebo 11 (sdformat 9) element by element, as sdf_elements' table says
+(doc/worlds.md shows it): models, nested models, links, their collisions and visuals (box,
+cylinder, sphere, plane, one extruded polyline, a Collada, STL or OBJ mesh: mesh_file), poses
+relative to the parent or to a named frame (sdf_frames), colours and textures (sdf_looks),
+``<include>``s of model folders found as Gazebo finds them (asset_uri) nested to
+MAX_INCLUDE_DEPTH, actors (world_actors), the first ``<state>``'s model poses and the world's
+lights (world_lights). A movable link keeps its ``<inertial>`` (SDF's defaults where absent)
+and each collision its ``<surface><friction><ode><mu>``.
 
-The subset: a ``<world>`` (or bare ``<model>`` elements) holding static or dynamic models, nested
-models and links, whose collisions and visuals have a ``box``, ``cylinder``, ``sphere``, ``plane``,
-one extruded ``polyline`` or a ``mesh`` (Collada, STL, OBJ: ``mesh_file``) geometry; ``<pose>`` as
-"x y z roll pitch yaw" (``degrees="true"`` allowed); visual ``<material>`` colours, and the
-colour and texture image of a ``<script>`` material of a model's own ``.material`` files
-(material_scripts); ``<include>`` of a model folder found as Gazebo finds it (``asset_uri``:
-``model://`` through GAZEBO_MODEL_PATH and the package's own ``models/``, which has Gazebo's
-``ground_plane`` and ``sun``), with its ``<name>``, ``<pose>`` and ``<static>`` overrides,
-nested to any depth up to MAX_INCLUDE_DEPTH; what an include or a mesh names is read only
-from a regular file (``file_read``). A model's links keep their ``<inertial>`` (SDF's defaults where absent: 1 kg, inertia 1 kg m^2
-about each axis) and each collision its ``<surface><friction><ode><mu>`` (default 1), so that a
-model that is not ``<static>`` can be a movable rigid body. The world's ``<light>``s and those of
-its ``<include>``s of a light model (``model://sun``) are kept in ``World.lights``
-(``world_lights.Light``: they light nothing, the world API reads and sets them). Other
-elements that do not shape the world (physics, scene, gui, plugin, sensor, joint ...) are
-skipped. Anything else that would carry geometry (a heightmap, a mesh's ``<submesh>``, an
-actor) is an error, never a silent gap.
+Nothing Gazebo reads refuses a world. An element not simulated (a heightmap, a road, a world
+model's sensor, a plugin ...) is left out with one warning line per kind and world
+(sdf_elements.ElementNotes); so are, one warning line each, an ``<include>`` whose model is
+found nowhere or names no file (the model is left out), a ``<mesh>`` whose file is found
+nowhere or is an unreadable Collada file (its link loads without it), a material script or
+texture that cannot be used, a light's value that cannot be read. Refused with one line (file,
+line, fault) is what Gazebo refuses or what would poison the physics: malformed XML, a NaN
+pose, numbers beyond ``limits``, a movable link's mass or inertia that is not positive, an
+include loop, a file that is not regular. A static model's ``<inertial>`` is not checked.
 
-Tolerated as Gazebo tolerates them, each with one line in ``World.warnings`` (file, line, what
-was left out; the node logs them): an ``<include>`` whose model is found nowhere (the model is
-left out), a ``<mesh>`` whose file is found nowhere or is a Collada file that cannot be read
-(the link loads without that collision or visual), a material script that cannot be read or
-is malformed, or whose texture cannot be used (the visual is drawn in its colour, else grey), a
-light's value that cannot be read (it keeps SDF's default). A static model's ``<inertial>``
-numbers are not checked (Gazebo never uses them; its building editor writes mass 0 and
-inertia nan).
+``load_world`` reads a world in three passes over the same parsed XML: its structure alone (no
+mesh read: a refusal comes at once, whatever meshes come before it), then with the mesh files
+noted and converted in parallel into the disk cache (mesh_cache), then for real.
 
 Units: metres, radians. Poses are in the world frame (z up), kept as SDF writes them
-(kinematics.XyzRpy: x, y, z, then SDF's fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch)
-Rx(roll)); kinematics.pose_from_xyz_rpy makes them quaternion poses. Errors are xml_reader's
-one line: file, line, what is wrong.
+(kinematics.XyzRpy). Errors are xml_reader's one line: file, line, what is wrong.
 """
 import math
 import os
-from dataclasses import dataclass, replace
-from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
+from dataclasses import replace
+from typing import Dict, List, Optional, Tuple
 
 from ...errors import UserError, WorldError
 from . import limits
@@ -46,251 +39,23 @@ from . import xml_reader
 from .asset_uri import AssetError, AssetNotFound, model_sdf_file, resolve_uri
 from .file_read import not_regular
 from .material_scripts import MaterialScripts
+from .sdf_elements import ElementNotes, one_line
+from .sdf_frames import MODEL_FRAME, WORLD_FRAME, Frames
+from .sdf_geometry import clean_polygon, normal_pose
+from .sdf_inertia import InertiaReader
+from .sdf_looks import LookReader
+from .world_actors import MAX_WAYPOINTS, read_actor
 from .world_lights import Light, light_of, light_pose
-from ..kinematics import ZERO_XYZ_RPY, XyzRpy, compose_xyz_rpy, cross_2d, rpy_from_matrix
-from ...package_data import data_dir
+from .world_types import DEFAULT_RGBA, KINDS, Actor, Link, Model, Shape, World
+from ..kinematics import ZERO_XYZ_RPY, XyzRpy, compose_xyz_rpy
 from .xml_reader import Element, XmlReader
 
-Rgba = Tuple[float, float, float, float]
-Spawn = Tuple[float, float, float]                       # x, y (m), yaw (rad) of base_footprint
-KINDS = ("box", "cylinder", "sphere", "plane", "polyline", "mesh")
-MAX_INCLUDE_DEPTH = 16        # <include>s nested deeper than this are refused (a model including itself)
+MAX_INCLUDE_DEPTH = 16    # <include>s nested deeper are refused (a model including itself)
 # What one document may expand to, includes and all (a 155-character request of three local
 # models once fanned out to 10,000 boxes): reading stops with one line beyond these.
 MAX_WORLD_SHAPES = 100_000   # collisions and visuals
 MAX_INCLUDES = 10_000
-DEFAULT_RGBA: Rgba = (0.7, 0.7, 0.7, 1.0)   # a visual without material: Gazebo's light grey
 
-# The colour of each common Gazebo/<Name> material of Gazebo 11's gazebo.material: its diffuse
-# colour; for a textured one the mean colour of its texture (approximate); a few whose look
-# comes from their ambient term (SkyBlue) take that. Transparent and glowing ones are drawn
-# opaque. A name not here is drawn grey (DEFAULT_RGBA).
-GAZEBO_MATERIALS: Dict[str, Rgba] = {
-    "Gazebo/White": (1.0, 1.0, 1.0, 1.0),
-    "Gazebo/Grey": (0.7, 0.7, 0.7, 1.0),
-    "Gazebo/Gray": (0.7, 0.7, 0.7, 1.0),
-    "Gazebo/DarkGrey": (0.175, 0.175, 0.175, 1.0),
-    "Gazebo/DarkGray": (0.175, 0.175, 0.175, 1.0),
-    "Gazebo/FlatBlack": (0.1, 0.1, 0.1, 1.0),
-    "Gazebo/Black": (0.0, 0.0, 0.0, 1.0),
-    "Gazebo/Red": (1.0, 0.0, 0.0, 1.0),
-    "Gazebo/RedBright": (0.87, 0.26, 0.07, 1.0),
-    "Gazebo/Green": (0.0, 1.0, 0.0, 1.0),
-    "Gazebo/Blue": (0.0, 0.0, 1.0, 1.0),
-    "Gazebo/SkyBlue": (0.13, 0.44, 0.70, 1.0),
-    "Gazebo/Yellow": (1.0, 1.0, 0.0, 1.0),
-    "Gazebo/ZincYellow": (0.9725, 0.9529, 0.2078, 1.0),
-    "Gazebo/DarkYellow": (0.7, 0.7, 0.0, 1.0),
-    "Gazebo/Purple": (1.0, 0.0, 1.0, 1.0),
-    "Gazebo/Turquoise": (0.0, 1.0, 1.0, 1.0),
-    "Gazebo/Orange": (1.0, 0.5088, 0.0468, 1.0),
-    "Gazebo/Indigo": (0.33, 0.0, 0.5, 1.0),
-    "Gazebo/Gold": (0.8, 0.4974, 0.0071, 1.0),
-    "Gazebo/Chrome": (0.7, 0.7, 0.72, 1.0),
-    "Gazebo/WhiteGlow": (1.0, 1.0, 1.0, 1.0),
-    "Gazebo/RedGlow": (1.0, 0.0, 0.0, 1.0),
-    "Gazebo/GreenGlow": (0.0, 1.0, 0.0, 1.0),
-    "Gazebo/BlueGlow": (0.0, 0.0, 1.0, 1.0),
-    "Gazebo/YellowGlow": (1.0, 1.0, 0.0, 1.0),
-    "Gazebo/PurpleGlow": (1.0, 0.0, 1.0, 1.0),
-    "Gazebo/TurquoiseGlow": (0.0, 1.0, 1.0, 1.0),
-    "Gazebo/BlueLaser": (0.0, 0.0, 1.0, 1.0),
-    "Gazebo/RedTransparent": (1.0, 0.0, 0.0, 1.0),
-    "Gazebo/GreenTransparent": (0.0, 1.0, 0.0, 1.0),
-    "Gazebo/BlueTransparent": (0.0, 0.0, 1.0, 1.0),
-    "Gazebo/YellowTransparent": (1.0, 1.0, 0.0, 1.0),
-    "Gazebo/OrangeTransparent": (1.0, 0.44, 0.0, 1.0),
-    "Gazebo/GreyTransparent": (0.5, 0.5, 0.5, 1.0),
-    "Gazebo/BlackTransparent": (0.0, 0.0, 0.0, 1.0),
-    "Gazebo/DarkMagentaTransparent": (0.6, 0.0, 0.6, 1.0),
-    "Gazebo/Shadow": (0.2, 0.2, 0.2, 1.0),          # a see-through dark grey in Gazebo
-    # textured: the mean colour of the texture
-    "Gazebo/Wood": (0.62, 0.45, 0.28, 1.0),
-    "Gazebo/WoodFloor": (0.55, 0.38, 0.22, 1.0),
-    "Gazebo/WoodPallet": (0.66, 0.53, 0.37, 1.0),
-    "Gazebo/LightWood": (0.80, 0.66, 0.47, 1.0),
-    "Gazebo/Bricks": (0.58, 0.33, 0.26, 1.0),
-    "Gazebo/CeilingTiled": (0.80, 0.80, 0.78, 1.0),
-    "Gazebo/PaintedWall": (0.85, 0.83, 0.78, 1.0),
-    "Gazebo/Rockwall": (0.45, 0.42, 0.38, 1.0),
-    "Gazebo/Grass": (0.33, 0.47, 0.20, 1.0),
-    "Gazebo/Leaf": (0.24, 0.40, 0.12, 1.0),
-    "Gazebo/Trunk": (0.35, 0.35, 0.35, 1.0),         # the road texture of OSM trunk roads
-    "Gazebo/Road": (0.35, 0.35, 0.35, 1.0),
-    "Gazebo/Asphalt": (0.30, 0.30, 0.30, 1.0),
-    "Gazebo/Residential": (0.38, 0.38, 0.38, 1.0),
-    "Gazebo/Tertiary": (0.38, 0.38, 0.38, 1.0),
-    "Gazebo/Secondary": (0.38, 0.38, 0.38, 1.0),
-    "Gazebo/Primary": (0.35, 0.35, 0.35, 1.0),
-    "Gazebo/Motorway": (0.33, 0.33, 0.33, 1.0),
-    "Gazebo/Footway": (0.60, 0.58, 0.55, 1.0),
-    "Gazebo/Pedestrian": (0.60, 0.58, 0.55, 1.0),
-    "Gazebo/Lanes": (0.35, 0.35, 0.35, 1.0),
-    "Gazebo/CloudySky": (0.62, 0.70, 0.82, 1.0),
-}
-
-# World elements that carry geometry this loader cannot build.
-_UNSUPPORTED_WORLD = ("actor", "population", "road")
-
-
-@dataclass(frozen=True)
-class Shape:
-    """One collision or visual element, placed in the world.
-
-    The shape's own frame sits at ``pose``: box, cylinder and sphere are centred on it (a cylinder's
-    axis is its z); a plane's surface is its x-y plane with the normal along its z; a polyline is
-    the polygon ``points`` in its x-y plane extruded from z 0 up to its height.
-    """
-
-    name: str                # scoped as in Gazebo: "model::link::element" (nested models add parts)
-    kind: str                # one of KINDS
-    pose: XyzRpy             # world pose of the shape's frame
-    size: Tuple[float, ...]  # box (x, y, z); cylinder (radius, length); sphere (radius,);
-    #                          plane (x, y); polyline (height,); mesh (scale x, y, z)
-    points: Tuple[Tuple[float, float], ...] = ()  # polyline corners (x, y), counter-clockwise
-    rgba: Rgba = DEFAULT_RGBA  # a visual's colour; a collision takes its twin's (else its link's)
-    static: bool = True      # from <static> of the model or of any model around it
-    collision: bool = True   # True: a <collision>; False: a <visual>
-    twin: Optional[str] = None  # the element of the other kind in the same link with the same
-    #                             geometry and pose (a collision's visual, a visual's collision)
-    link: str = ""           # scoped name of its link ("model::link")
-    mu: float = 1.0          # a collision's friction coefficient (<surface><friction><ode><mu>)
-    mesh: str = ""           # a mesh's file, absolute (read by mesh_file.load_mesh with ``size``)
-    mesh_colours: bool = False  # a mesh visual without <material>: the file's own colours
-    texture: Optional[str] = None  # absolute path of the PNG or JPEG image of its <material>'s
-    #                               script (material_scripts; a collision: its twin's); drawn on
-    #                               a box or plane, the whole image once across its top face
-
-
-@dataclass(frozen=True)
-class Inertial:
-    """A link's mass properties; SDF's defaults where the file gives none."""
-
-    mass: float = 1.0                                    # kg
-    pose: XyzRpy = ZERO_XYZ_RPY                                # centre of mass in the link frame
-    inertia: Tuple[float, ...] = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)  # ixx iyy izz ixy ixz iyz, kg m^2
-
-
-@dataclass(frozen=True)
-class Link:
-    """One link of a model: where it is and what it weighs; its shapes carry ``link=scoped``."""
-
-    name: str                # the link's own name (Gazebo's body_names)
-    scoped: str              # "model::link" (nested models add parts), as /gazebo/link_states
-    pose: XyzRpy             # world pose of the link frame
-    inertial: Inertial = Inertial()
-
-
-@dataclass(frozen=True)
-class Model:
-    """A top-level model of a world file, as /gazebo/model_states lists it."""
-
-    name: str
-    pose: XyzRpy             # world pose of the model frame
-    static: bool
-    links: Tuple[Link, ...]
-    joints: Tuple[str, ...] = ()
-    joint_types: Tuple[str, ...] = ()    # each joint's <joint type> (revolute, fixed ...)
-
-
-@dataclass(frozen=True)
-class World:
-    """A loaded world file: its shapes in file order."""
-
-    name: str                   # <world name="...">, or the file's stem for a bare model file
-    path: str
-    models: Tuple[str, ...]     # top-level model names in file order (as /gazebo/model_states)
-    shapes: Tuple[Shape, ...]
-    model_specs: Tuple[Model, ...] = ()   # the same models with their links, in file order
-    warnings: Tuple[str, ...] = ()        # one line each: what was left out, and why
-    lights: Tuple[Light, ...] = ()        # the world's lights in file order (world_lights)
-
-    def model(self, name: str) -> Model:
-        """The top-level model called ``name``; KeyError if there is none."""
-        for m in self.model_specs:
-            if m.name == name:
-                return m
-        raise KeyError(name)
-
-    def model_shapes(self, name: str) -> Tuple[Shape, ...]:
-        """The collisions and visuals of model ``name`` (nested models included)."""
-        prefix = name + "::"
-        return tuple(s for s in self.shapes if s.name.startswith(prefix))
-
-    @property
-    def collisions(self) -> Tuple[Shape, ...]:
-        return tuple(s for s in self.shapes if s.collision)
-
-    @property
-    def visuals(self) -> Tuple[Shape, ...]:
-        return tuple(s for s in self.shapes if not s.collision)
-
-    def shape(self, name: str) -> Shape:
-        """The collision called ``name``, else the visual; KeyError if neither exists."""
-        for s in self.collisions + self.visuals:
-            if s.name == name:
-                return s
-        raise KeyError(name)
-
-
-# --- catalogue ----------------------------------------------------------------------------------
-
-class WorldEntry(NamedTuple):
-    """A world this package ships: its file in ``WORLD_DIR`` and where the robot spawns."""
-
-    file: str
-    spawn: Spawn
-
-
-WORLD_DIR = data_dir("worlds")
-
-# The spawn poses of the turtlebot3_gazebo launch files (doc/turtlebot3.md 4.1); the robot faces +x.
-_CATALOGUE = (
-    ("empty", WorldEntry("empty.world", (0.0, 0.0, 0.0))),
-    ("turtlebot3_world", WorldEntry("turtlebot3_world.world", (-2.0, -0.5, 0.0))),
-    ("turtlebot3_house", WorldEntry("turtlebot3_house.world", (-3.0, 1.0, 0.0))),
-    ("turtlebot3_autorace", WorldEntry("turtlebot3_autorace.world", (0.245, -1.787, 0.0))),
-    # The learning stages of turtlebot3_machine_learning (doc/turtlebot3.md 4.6).
-    ("turtlebot3_stage_1", WorldEntry("turtlebot3_stage_1.world", (0.0, 0.0, 0.0))),
-    ("turtlebot3_stage_2", WorldEntry("turtlebot3_stage_2.world", (0.0, 0.0, 0.0))),
-    ("turtlebot3_stage_3", WorldEntry("turtlebot3_stage_3.world", (0.0, 0.0, 0.0))),
-    ("turtlebot3_stage_4", WorldEntry("turtlebot3_stage_4.world", (-0.7, 0.0, 0.0))),
-)
-WORLDS: Dict[str, WorldEntry] = {name: entry for name, entry in _CATALOGUE
-                                 if os.path.isfile(os.path.join(WORLD_DIR, entry.file))}
-WORLD_SUFFIXES = (".world", ".sdf")
-
-
-def world_from_command_line(world: str, environ=os.environ) -> str:
-    """``world`` with a relative file path made absolute against the directory the user typed
-    the command in (roslaunch runs the sim in ~/.ros, but leaves the shell's $PWD as it was)."""
-    if world.endswith(WORLD_SUFFIXES) and not os.path.isabs(os.path.expanduser(world)):
-        return os.path.join(environ.get("PWD") or os.getcwd(), world)
-    return world
-
-
-def resolve_world(name_or_path: str) -> Tuple[str, Optional[Spawn]]:
-    """(absolute path, spawn) for a catalogue name or a path to a .world/.sdf file.
-
-    A path to a catalogue file gets that world's spawn; any other path gets None.
-    """
-    if name_or_path in WORLDS:
-        entry = WORLDS[name_or_path]
-        return os.path.join(WORLD_DIR, entry.file), entry.spawn
-    if not name_or_path.endswith(WORLD_SUFFIXES):
-        raise WorldError("unknown world %r: valid worlds are %s, or a path to a %s file"
-                         % (name_or_path, ", ".join(WORLDS), " or ".join(WORLD_SUFFIXES)))
-    path = os.path.abspath(os.path.expanduser(name_or_path))
-    if not os.path.isfile(path):
-        raise WorldError("world file not found: %s" % path)
-    for entry in WORLDS.values():
-        known = os.path.join(WORLD_DIR, entry.file)
-        if os.path.isfile(known) and os.path.samefile(known, path):
-            return path, entry.spawn
-    return path, None
-
-
-# --- XML with line numbers ----------------------------------------------------------------------
 
 def _parse_xml(path: str) -> Element:
     """The root element of the SDF file at ``path``; WorldError (file, line) if it cannot."""
@@ -303,78 +68,64 @@ def parse_xml(data, source: str) -> Element:
     return xml_reader.parse(data, source, WorldError)
 
 
-def _normal_pose(n: Sequence[float]) -> XyzRpy:
-    """A rotation taking +z onto the unit vector ``n`` (the shortest one)."""
-    axis = (-n[1], n[0], 0.0)                    # z x n
-    s, c = math.hypot(axis[0], axis[1]), n[2]
-    if s < 1e-12:
-        return ZERO_XYZ_RPY if c > 0 else (0.0, 0.0, 0.0, math.pi, 0.0, 0.0)
-    ux, uy = axis[0] / s, axis[1] / s
-    t = 1.0 - c                                  # Rodrigues with a horizontal unit axis (ux, uy, 0)
-    m = ((c + ux * ux * t, ux * uy * t, uy * s),
-         (ux * uy * t, c + uy * uy * t, -ux * s),
-         (-uy * s, ux * s, c))
-    return (0.0, 0.0, 0.0) + rpy_from_matrix(m)
-
-
-# --- polygon checks for polylines ---------------------------------------------------------------
-
-def _segments_cross(p1, p2, q1, q2) -> bool:
-    d1, d2 = cross_2d(q1, q2, p1), cross_2d(q1, q2, p2)
-    d3, d4 = cross_2d(p1, p2, q1), cross_2d(p1, p2, q2)
-    return d1 * d2 < 0 and d3 * d4 < 0
-
-
-def _clean_polygon(points: List[Tuple[float, float]]) -> Optional[Tuple[Tuple[float, float], ...]]:
-    """Counter-clockwise corners without repeats (a closing repeat of the first included) or
-    straight-through points; None if the polygon is degenerate or crosses itself."""
-    pts = list(points)
-    changed = True
-    while changed and len(pts) >= 3:
-        changed = False
-        for i in range(len(pts)):
-            a, b, c = pts[i - 1], pts[i], pts[(i + 1) % len(pts)]
-            if abs(cross_2d(a, b, c)) < 1e-12:
-                del pts[i]
-                changed = True
-                break
-    if len(pts) < 3:
-        return None
-    n = len(pts)
-    edges = [(pts[i], pts[(i + 1) % n]) for i in range(n)]
-    for i in range(n):
-        for j in range(i + 2, n):
-            if (j + 1) % n != i and _segments_cross(*edges[i], *edges[j]):
-                return None
-    area = sum(cross_2d((0.0, 0.0), pts[i - 1], pts[i]) for i in range(n))
-    return tuple(pts if area > 0 else pts[::-1])
-
-
 # --- the loader ---------------------------------------------------------------------------------
 
-class _Loader(XmlReader):
+class _Loader(InertiaReader, LookReader, XmlReader):
     """Walks one SDF document; every error names the file and the line of the element at fault."""
 
-    def __init__(self, path: str, base_dir: Optional[str] = None, depth: int = 0):
+    def __init__(self, path: str, base_dir: Optional[str] = None, depth: int = 0,
+                 read_meshes: bool = True, parsed: Optional[Dict[str, Element]] = None,
+                 material_scripts: Optional[MaterialScripts] = None):
         """``path`` names the document in errors; relative URIs are read from ``base_dir``
-        (default: the document's folder); ``depth`` counts the includes around it."""
+        (default: the document's folder); ``depth`` counts the includes around it;
+        ``read_meshes`` False reads no mesh file (the structure alone); ``parsed`` (included
+        files already parsed, by path) and ``material_scripts`` are shared by the passes of
+        one load_world, so that each file is read once."""
         super().__init__(path, WorldError)
         self.path = path
         self.base_dir = base_dir if base_dir is not None else os.path.dirname(path)
         self.depth = depth
+        self.read_meshes = read_meshes
+        self.parsed = parsed if parsed is not None else {}
         self.shapes: List[Shape] = []
         self._links: List[Link] = []
         self._joints: List[Tuple[str, str]] = []    # (name, type)
-        self.warnings: List[str] = []               # shared with the loaders of includes
-        self.budget = {"shapes": MAX_WORLD_SHAPES, "includes": MAX_INCLUDES}   # shared too
-        self.material_scripts = MaterialScripts()   # each script file read once; shared too
+        # shared with the loaders of includes:
+        self.warnings: List[str] = []
+        self.budget = {"shapes": MAX_WORLD_SHAPES, "includes": MAX_INCLUDES,
+                       "waypoints": MAX_WAYPOINTS}
+        self.material_scripts = material_scripts or MaterialScripts()   # each file read once
+        self.elements = ElementNotes(self.warnings)
         self.lights: List[Light] = []               # the world's, in file order
+        self.actors: List[Tuple[Actor, Model]] = []   # the world's, in file order
+
+    def inner(self, path: str) -> "_Loader":
+        """A loader of the included file ``path`` that adds to what this one has read."""
+        inner = _Loader(path, depth=self.depth + 1, read_meshes=self.read_meshes,
+                        parsed=self.parsed)
+        for shared in ("shapes", "warnings", "budget", "material_scripts", "elements", "lights",
+                       "actors"):
+            setattr(inner, shared, getattr(self, shared))
+        return inner
 
     def warn(self, node: Element, message: str) -> None:
         """Note ``message`` about ``node`` ("file:line: message"), once."""
         line = "%s:%d: %s" % (self.path, node.line, message)
         if line not in self.warnings:
             self.warnings.append(line)
+
+    def warn_short(self, node: Element, message: str) -> None:
+        """``warn``, in at most sdf_elements.MAX_WARNING_CHARS characters (one_line)."""
+        line = one_line(self.path, node.line, message)
+        if line not in self.warnings:
+            self.warnings.append(line)
+
+    def warn_searched(self, err: Exception) -> None:
+        """The folders a missing file was searched in (AssetNotFound.searched), once per
+        world: the warnings of each missing file name it alone."""
+        searched = getattr(err, "searched", "")
+        if searched and searched not in self.warnings:
+            self.warnings.append(searched)
 
     # numbers
 
@@ -389,15 +140,13 @@ class _Loader(XmlReader):
         return values
 
     def pose(self, parent: Element) -> XyzRpy:
+        """The numbers of ``parent``'s <pose> (relative to the frame it names: sdf_frames)."""
         node = parent.child("pose")
         if node is None or not node.value:
             return ZERO_XYZ_RPY
-        for frame in ("relative_to", "frame"):
-            if node.attrib.get(frame):
-                self.fail_bare(node, "<pose %s=...> is not supported: give poses relative to "
-                                     "the parent element" % frame)
         if node.attrib.get("rotation_format", "euler_rpy") != "euler_rpy":
-            self.fail_bare(node, "<pose rotation_format=...> is not supported: use euler_rpy")
+            self.fail_bare(node, "<pose rotation_format=...> is SDF 1.9, which Gazebo 11 does "
+                                 "not read: use euler_rpy")
         x, y, z, roll, pitch, yaw = self.floats(node, 6)
         if node.attrib.get("degrees", "false").lower() in ("true", "1"):
             roll, pitch, yaw = (math.radians(a) for a in (roll, pitch, yaw))
@@ -406,6 +155,14 @@ class _Loader(XmlReader):
         if problem:
             self.fail_bare(node, problem)
         return (x, y, z, roll, pitch, yaw)
+
+    def frames(self, scope_pose: XyzRpy, scope_frame: str, nodes) -> Frames:
+        return Frames(scope_pose, scope_frame, nodes, self.pose, self.fail_bare)
+
+    def model_frames(self, node: Element, pose: XyzRpy) -> Frames:
+        """The named frames of the model (or actor) ``node`` standing at world ``pose``."""
+        return self.frames(pose, MODEL_FRAME, [c for c in node.children
+                                               if c.tag in ("link", "model", "frame")])
 
     # structure
 
@@ -422,37 +179,68 @@ class _Loader(XmlReader):
         return self.models_of(world, name)
 
     def models_of(self, world: Element, name: str, parent: XyzRpy = ZERO_XYZ_RPY) -> World:
-        """The World made of ``world``'s top-level models and includes, placed in ``parent``."""
+        """The World made of ``world``'s top-level models, includes and actors, placed in
+        ``parent``: the models in file order, then the actors (Gazebo's World::LoadEntities)."""
         models: List[Model] = []
         saved = _saved_poses(world)
-        for node in world.children:
-            if node.tag in ("model", "include"):
-                node = _with_saved_pose(node, saved)
+        nodes = [_with_saved_pose(n, saved) if n.tag in ("model", "include", "actor") else n
+                 for n in world.children]
+        frames = self.frames(parent, WORLD_FRAME, [n for n in nodes if n.tag in (
+            "model", "include", "actor", "frame")])
+        is_world = world.tag == "world"
+        for node in nodes:
             if node.tag == "model":
-                models.append(self.top_model(node, parent))
+                models.append(self.top_model(node, frames.place(node, parent)))
             elif node.tag == "include":
-                models.extend(self.include(node, parent, ""))
-            elif node.tag == "light" and world.tag == "world":
+                models.extend(self.include(node, parent, "", frames=frames))
+            elif node.tag == "actor" and is_world:
+                self.actor(node, frames.place(node, parent))
+            elif node.tag == "light" and is_world:
                 self.lights.append(light_of(node, self.warn))
-            elif node.tag in _UNSUPPORTED_WORLD:
-                self.fail_bare(node, "<%s> is not supported: build it from models" % node.tag)
+            elif is_world:
+                self.elements.check("world", node, self.path)
+        models.extend(model for _, model in self.actors)
+        self.elements.finish()
         return World(name, self.path, tuple(m.name for m in models), tuple(self.shapes),
-                     tuple(models), tuple(self.warnings), tuple(self.lights))
+                     tuple(models), tuple(self.warnings), tuple(self.lights),
+                     tuple(actor for actor, _ in self.actors))
 
-    def top_model(self, node: Element, parent: XyzRpy) -> Model:
-        self._links: List[Link] = []
-        self._joints: List[Tuple[str, str]] = []
-        name = self.model(node, parent, "", False)
-        pose = compose_xyz_rpy(parent, self.pose(node))
+    def begin_model(self) -> None:
+        """Start collecting the links and joints of a new top-level model or actor."""
+        self._links = []
+        self._joints = []
+
+    def links_so_far(self) -> List[Link]:
+        return self._links
+
+    def add_link(self, link: Link) -> None:
+        self._links.append(link)
+
+    def add_shape(self, shape: Shape) -> None:
+        """Append ``shape``, held to the world's budget of shapes."""
+        self.shapes.append(shape)
+        if len(self.shapes) > self.budget["shapes"]:
+            raise WorldError("%s: more than %d collisions and visuals in all (do includes fan "
+                             "out?)" % (self.path, self.budget["shapes"]))
+
+    def top_model(self, node: Element, pose: XyzRpy) -> Model:
+        """The top-level model ``node`` standing at world ``pose``."""
+        self.begin_model()
+        name = self.model(node, pose, "", False)
         return Model(name, pose, self.flag(node, "static", False), tuple(self._links),
                      tuple(n for n, _ in self._joints), tuple(t for _, t in self._joints))
 
-    def include(self, node: Element, parent: XyzRpy, scope: str,
-                parent_static: bool = False) -> List[Model]:
+    def actor(self, node: Element, pose: XyzRpy) -> None:
+        """The actor ``node`` standing at world ``pose``, kept in ``self.actors``."""
+        self.actors.append(read_actor(self, node, pose))
+
+    def include(self, node: Element, parent: XyzRpy, scope: str, parent_static: bool = False,
+                frames: Optional[Frames] = None) -> List[Model]:
         """The model an <include> adds, read from the folder or file its <uri> names, with the
-        include's <name>, <pose> and <static> in place of the model's own. At the top level it
-        is a Model of the world; inside a model (``scope``) its links join that model. An SDF
-        of lights only (model://sun) adds no model; at the top level its lights join the
+        include's <name>, <pose> (in ``frames``, the includer's) and <static> in place of the
+        model's own. At the top level it is a Model of the world; inside a model (``scope``) its
+        links join that model. A file of an <actor> adds that actor (at the top level); one of
+        lights only (model://sun) adds no model, and at the top level its lights join the
         world's."""
         uri_node = node.child("uri")
         uri = uri_node.value if uri_node is not None else ""
@@ -467,46 +255,49 @@ class _Loader(XmlReader):
                                  "fan out?)" % (uri, MAX_INCLUDES))
         try:
             found = resolve_uri(uri, self.base_dir)
+            sdf = model_sdf_file(found) if os.path.isdir(found) else found
         except AssetNotFound as err:     # Gazebo (sdformat) skips it: "Unable to find uri"
-            self.warn(node, "<include> left out: %s" % err)
+            self.warn_short(node, "<include> left out: %s" % err.short)
+            self.warn_searched(err)
             return []
-        except AssetError as err:
-            self.fail_bare(node, "<include>: %s" % err)
-        try:
-            sdf = model_sdf_file(found, parse_xml) if os.path.isdir(found) else found
         except AssetError as err:
             self.fail_bare(node, "<include>: %s" % err)
         why = not_regular(sdf)     # /dev/stdin or a FIFO would wait for ever, /dev/zero fill
         if why is not None:        # the memory (file_read)
             self.fail_bare(node, "<include> of %s: %s: %s" % (uri, sdf, why))
-        root = _parse_xml(sdf)
+        root = self.parsed.get(sdf)
+        if root is None:
+            root = self.parsed[sdf] = _parse_xml(sdf)
         models = root.all("model")
         if len(models) != 1:
+            if not models and root.all("actor") and not scope:
+                actor = _overridden(root.all("actor")[0], node, ("pose",))
+                self.inner(sdf).actor(actor, self._placed(node, actor, parent, frames))
+                return []
             if not models and root.all("light"):
                 if not scope:
                     self.light_model(node, sdf, root)
                 return []
             self.fail_bare(node, "<include> of %s: %s must hold one <model>, it holds %d"
                            % (uri, sdf, len(models)))
-        model = models[0]
-        children = list(model.children)
-        for tag in ("pose", "static"):
-            override = node.child(tag)
-            if override is not None:
-                children = [c for c in children if c.tag != tag] + [override]
-        name_node = node.child("name")
-        attrib = dict(model.attrib)
-        if name_node is not None and name_node.value:
-            attrib["name"] = name_node.value
-        model = xml_reader.element("model", attrib, model.line, children)
-        inner = _Loader(sdf, depth=self.depth + 1)
-        inner.shapes, inner.warnings, inner.budget = self.shapes, self.warnings, self.budget
-        inner.material_scripts = self.material_scripts
+        model = _overridden(models[0], node, ("pose", "static"))
+        for plugin in node.all("plugin"):       # sdformat 9 adds them to the model
+            self.elements.check("model", plugin, self.path)
+        inner = self.inner(sdf)
+        pose = self._placed(node, model, parent, frames)
         if not scope:
-            return [inner.top_model(model, parent)]
+            return [inner.top_model(model, pose)]
         inner._links, inner._joints = self._links, self._joints
-        inner.model(model, parent, scope, parent_static)
+        inner.model(model, pose, scope, parent_static)
         return []
+
+    def _placed(self, include: Element, model: Element, parent: XyzRpy,
+                frames: Optional[Frames]) -> XyzRpy:
+        """World pose of an included ``model``: the include's <pose> in the includer's frames,
+        else the model's own <pose> relative to ``parent``."""
+        if include.child("pose") is not None and frames is not None:
+            return frames.place(include, parent)
+        return compose_xyz_rpy(parent, self.pose(model))
 
     def light_model(self, include: Element, sdf: str, root: Element) -> None:
         """Keep the lights of the light model ``root`` (read from ``sdf``) that ``include``
@@ -521,20 +312,24 @@ class _Loader(XmlReader):
         inner.warnings = self.warnings
         self.lights.extend(light_of(elem, inner.warn, name, pose) for elem in lights)
 
-    def model(self, node: Element, parent: XyzRpy, scope: str, parent_static: bool) -> str:
+    def model(self, node: Element, pose: XyzRpy, scope: str, parent_static: bool) -> str:
+        """Read the model ``node`` standing at world ``pose`` inside ``scope`` (the names of
+        the models around it, each with "::"); its name."""
         name = self.name(node)
-        pose = compose_xyz_rpy(parent, self.pose(node))
         static = parent_static or self.flag(node, "static", False)
         scope += name + "::"
+        frames = self.model_frames(node, pose)
         for child in node.children:
             if child.tag == "link":
-                self.link(child, pose, scope, static)
+                self.link(child, frames.place(child, pose), scope, static, frames)
             elif child.tag == "model":
-                self.model(child, pose, scope, static)
+                self.model(child, frames.place(child, pose), scope, static)
             elif child.tag == "include":
-                self.include(child, pose, scope, static)
-            elif child.tag == "joint":
-                self._joints.append((self.name(child), child.attrib.get("type", "")))
+                self.include(child, pose, scope, static, frames)
+            else:
+                if child.tag == "joint":
+                    self._joints.append((self.name(child), child.attrib.get("type", "")))
+                self.elements.check("model", child, self.path, static)
         return name
 
     def name(self, node: Element) -> str:
@@ -546,17 +341,20 @@ class _Loader(XmlReader):
             self.fail_bare(node, problem)
         return name
 
-    def link(self, node: Element, parent: XyzRpy, scope: str, static: bool) -> None:
-        pose = compose_xyz_rpy(parent, self.pose(node))
+    def link(self, node: Element, pose: XyzRpy, scope: str, static: bool,
+             frames: Frames) -> None:
+        """Read the link ``node`` standing at world ``pose``; ``frames``: its model's."""
         own = self.name(node)
         link = scope + own
         scope = link + "::"
         shapes = []
         for child in node.children:
             if child.tag in ("collision", "visual"):
-                shape = self.element(child, pose, scope, static)
+                shape = self.element(child, frames.place(child, pose), scope, static)
                 if shape is not None:
                     shapes.append(replace(shape, link=link))
+            elif child.tag not in ("inertial", "pose"):
+                self.elements.check("link", child, self.path, static)
         self.shapes.extend(self.pair_twins(shapes))
         if len(self.shapes) > self.budget["shapes"]:
             self.fail_bare(node, "more than %d collisions and visuals in all (do includes fan "
@@ -564,62 +362,13 @@ class _Loader(XmlReader):
         self._links.append(Link(own, link, pose,
                                 self.inertial(node.child("inertial"), static)))
 
-    def inertial(self, node: Optional[Element], static: bool = False) -> Inertial:
-        """A link's <inertial>, SDF's defaults for what it leaves out.
-
-        Only a movable link's mass and inertia are checked. Gazebo 11 gives a static link no
-        physics body at all (ODELink::UpdateMass returns at once without one), so a static
-        model's numbers are never used: Gazebo's building editor writes mass 0 and inertia
-        nan there. Here such a link keeps SDF's defaults (nothing uses them either). On a
-        movable link Gazebo repairs nothing: ODELink::UpdateMass throws "Setting custom link
-        ... mass to zero!" for a mass that is not > 0 (nan included), and ODE's dBodySetMass
-        asserts a positive definite inertia (gzserver ends with "ODE INTERNAL ERROR ...
-        dMassCheck"). So those stay refused here, with the line at fault."""
-        if node is None:
-            return Inertial()
-        mass = Inertial.mass
-        mass_node = node.child("mass")
-        problems = []
-        if mass_node is not None:
-            mass = self.floats(mass_node, 1, finite=False)[0]
-            problems.append((mass_node, limits.mass_problem(mass, field="<mass>"),
-                             not mass > 0))
-        inertia = list(Inertial.inertia)
-        inertia_node = node.child("inertia")
-        if inertia_node is not None:
-            for i, tag in enumerate(limits.INERTIA_NAMES):
-                value = inertia_node.child(tag)
-                if value is not None:
-                    inertia[i] = self.floats(value, 1, finite=False)[0]
-            problems.append((inertia_node, limits.inertia_problem(
-                inertia[:3], inertia[3:],
-                names=tuple("<inertia> %s" % n for n in limits.INERTIA_NAMES)),
-                not all(v > 0 for v in inertia[:3])))
-        pose = self.pose(node)           # a pose is checked in any model: nan is garbage
-        for at, problem, not_positive in problems:
-            if problem and static:
-                return Inertial(pose=pose)
-            if problem:
-                self.fail_bare(at, problem + (" (Gazebo refuses it on a link that is not static)"
-                                              if not_positive else ""))
-        return Inertial(mass, pose, tuple(inertia))
-
-    def friction(self, collision: Element) -> float:
-        """<surface><friction><ode><mu> of a collision (SDF's default 1)."""
-        node = collision
-        for tag in ("surface", "friction", "ode", "mu"):
-            node = node.child(tag)
-            if node is None:
-                return 1.0
-        mu = self.floats(node, 1, finite=False)[0]
-        problem = limits.outside("<mu>", mu, 0.0, limits.MAX_FRICTION)
-        if problem:
-            self.fail_bare(node, problem)
-        return mu
-
-    def element(self, node: Element, parent: XyzRpy, scope: str, static: bool) -> Optional[Shape]:
-        """A collision or visual as a Shape; None for an empty geometry."""
+    def element(self, node: Element, pose: XyzRpy, scope: str, static: bool) -> Optional[Shape]:
+        """A collision or visual standing at world ``pose`` as a Shape; None for an empty
+        geometry or one left out (sdf_elements: a heightmap, a submesh ...)."""
         name = scope + self.name(node)
+        for child in node.children:
+            if child.tag not in ("geometry", "pose", "material"):
+                self.elements.check(node.tag, child, self.path, static)
         geometry = node.child("geometry")
         if geometry is None or not geometry.children or geometry.children[0].tag == "empty":
             return None
@@ -627,7 +376,8 @@ class _Loader(XmlReader):
             self.fail_bare(geometry.children[1], "<geometry> of %s holds more than one shape "
                                                  "(one <polyline> at most)" % name)
         geo = geometry.children[0]
-        pose = compose_xyz_rpy(parent, self.pose(node))
+        if self.elements.check("geometry", geo, self.path, static):
+            return None
         points: Tuple[Tuple[float, float], ...] = ()
         if geo.tag == "box":
             size = self.positive(geo, "size", 3, (1.0, 1.0, 1.0))
@@ -643,39 +393,41 @@ class _Loader(XmlReader):
             length = math.hypot(*normal)     # no overflow for 1e200
             if length == 0:
                 self.fail_bare(normal_node, "<normal> must not be zero")
-            pose = compose_xyz_rpy(pose, _normal_pose([v / length for v in normal]))
+            pose = compose_xyz_rpy(pose, normal_pose([v / length for v in normal]))
         elif geo.tag == "polyline":
             size = self.positive(geo, "height", 1, (1.0,))
             points = self.polygon(geo)
         elif geo.tag == "mesh":
-            found = self.mesh(geo, name)
+            found = self.mesh(geo, name, static)
             if found is None:
                 return None
             size, mesh = found
         else:
-            self.fail_bare(geo, "unsupported geometry <%s> in %s (supported: %s)"
-                           % (geo.tag, name, ", ".join(KINDS)))
+            self.fail_bare(geo, "unsupported geometry <%s> in %s (Gazebo 11 reads %s, "
+                                "heightmap, image)" % (geo.tag, name, ", ".join(KINDS)))
         collision = node.tag == "collision"
         rgba, texture = (DEFAULT_RGBA, None) if collision else self.look(node.child("material"))
         mu = self.friction(node) if collision else 1.0
         mesh_colours = geo.tag == "mesh" and not collision and node.child("material") is None
-        if mesh_colours:
-            self.texture_warnings(geo, mesh, size)
+        if geo.tag == "mesh" and not collision and self.read_meshes:
+            self.texture_warnings(geo, mesh, size, own=mesh_colours)
         return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu,
                      mesh=mesh if geo.tag == "mesh" else "", mesh_colours=mesh_colours,
                      texture=texture)
 
-    def mesh(self, geo: Element, name: str) -> Optional[Tuple[Tuple[float, ...], str]]:
-        """(scale, absolute file) of a <mesh>, its file read once here so that a bad one is
-        refused with this line. None, with a warning, for a file found nowhere or a Collada
-        file that cannot be read: Gazebo loads the link without that geometry."""
-        from .mesh_file import MeshUnreadable, load_mesh
+    def mesh(self, geo: Element, name: str,
+             static: bool) -> Optional[Tuple[Tuple[float, ...], str]]:
+        """(scale, absolute file) of a <mesh>, its file read once here (unless ``read_meshes``
+        is False) so that a bad one is refused with this line. None, with a warning, for a
+        file found nowhere, a Collada file that cannot be read, or a <submesh>: Gazebo loads
+        the link without that geometry (this sim too, for a submesh)."""
+        from .mesh_file import SUFFIXES, MeshUnreadable, load_mesh
         uri_node = geo.child("uri")
         if uri_node is None or not uri_node.value:
             self.fail_bare(geo, "<mesh> of %s needs a <uri>" % name)
-        if geo.child("submesh") is not None:
-            self.fail_bare(geo.child("submesh"), "<submesh> is not supported: give the part "
-                                                 "its own mesh file")
+        submesh = geo.child("submesh")
+        if submesh is not None and self.elements.check("mesh", submesh, self.path, static):
+            return None
         scale = (1.0, 1.0, 1.0)
         scale_node = geo.child("scale")
         if scale_node is not None:
@@ -685,23 +437,39 @@ class _Loader(XmlReader):
                 self.fail_bare(scale_node, problem)
         try:
             path = resolve_uri(uri_node.value, self.base_dir)
-            load_mesh(path, scale)
+            if self.read_meshes:
+                load_mesh(path, scale)
+            else:               # what load_mesh refuses without reading the file
+                why = not_regular(path)
+                if why is not None:
+                    self.fail_bare(uri_node, "%s: %s (a mesh file is needed)" % (path, why))
+                suffix = os.path.splitext(path)[1].lower()
+                if suffix not in SUFFIXES:
+                    self.fail_bare(uri_node, "%s: unknown mesh format %r; the formats read "
+                                             "are %s" % (path, suffix, ", ".join(SUFFIXES)))
         except (AssetNotFound, MeshUnreadable) as err:
-            if not any(w.endswith(str(err)) for w in self.warnings):   # once per file
-                self.warn(uri_node, "%s left out: %s" % (name, err))
+            short = getattr(err, "short", str(err))    # the folders searched: said once
+            if not any(short in w for w in self.warnings):   # once per file
+                self.warn_short(uri_node, "%s left out: %s" % (name, short))
+                self.warn_searched(err)
             return None
         except UserError as err:
             self.fail_bare(uri_node, str(err))
         return scale, path
 
-    def texture_warnings(self, geo: Element, path: str, scale) -> None:
-        """A warning (once per line) for each texture of the drawn mesh ``path`` that is not
-        used: its part is drawn in its colour."""
+    def texture_warnings(self, geo: Element, path: str, scale, own: bool = True) -> None:
+        """A warning (once per line, at most 200 characters) for each texture of the visual
+        mesh ``path`` that is not drawn: one the mesh reader could not use (its part is drawn
+        in its colour), or, without ``own`` (the visual has an SDF <material>, which colours
+        the whole mesh), every texture it found."""
         from .mesh_file import load_mesh
         for part in load_mesh(path, scale).parts:
             problem = part.texture_problem
-            if problem and not any(w.endswith(problem) for w in self.warnings):
-                self.warn(geo.child("uri"), problem)
+            if part.texture is not None and not own:
+                problem = ("%s: texture %s not drawn: the visual's <material> colours the mesh"
+                           % (os.path.basename(path), os.path.basename(part.texture)))
+            if problem and not any(problem[:120] in w for w in self.warnings):   # once
+                self.warn_short(geo.child("uri"), problem)
 
     def polygon(self, polyline: Element) -> Tuple[Tuple[float, float], ...]:
         points = [self.floats(p, 2) for p in polyline.all("point")]
@@ -709,83 +477,11 @@ class _Loader(XmlReader):
             problem = limits.position_problem("<point>", point)
             if problem:
                 self.fail_bare(node, problem)
-        cleaned = _clean_polygon([(x, y) for x, y in points])
+        cleaned = clean_polygon([(x, y) for x, y in points])
         if cleaned is None:
             self.fail_bare(polyline, "<polyline> must be a simple polygon of at least 3 corners "
                                      "(not crossing itself)")
         return cleaned
-
-    def colour(self, material: Optional[Element]) -> Rgba:
-        """Explicit <diffuse>, else <ambient>, else a known Gazebo script name, else the
-        colour of the script's own material (material_scripts), else grey."""
-        return self.look(material)[0]
-
-    def look(self, material: Optional[Element]) -> Tuple[Rgba, Optional[str]]:
-        """(colour, texture image or None) of a visual's <material>: ``colour``'s, and the
-        image of a script's own material where it has one. A bad script is a warning (its
-        file and line), never an error: the visual is drawn grey."""
-        if material is None:
-            return DEFAULT_RGBA, None
-        for tag in ("diffuse", "ambient"):
-            node = material.child(tag)
-            if node is not None:
-                values = node.value.split()
-                rgba = self.floats(node, 4 if len(values) == 4 else 3)
-                if not all(0.0 <= v <= 1.0 for v in rgba):
-                    self.fail_bare(node, "<%s> values must lie in 0..1, got %r" % (tag, node.value))
-                return tuple(rgba) + (1.0,) * (4 - len(rgba)), None
-        script = material.child("script")
-        script_name = script.child("name") if script is not None else None
-        if script_name is None:
-            return DEFAULT_RGBA, None
-        if script_name.value in GAZEBO_MATERIALS:
-            return GAZEBO_MATERIALS[script_name.value], None
-        return self.script_look(script, script_name)
-
-    def script_look(self, script: Element, name: Element) -> Tuple[Rgba, Optional[str]]:
-        """(colour, texture or None) of a material the <script>'s own <uri> folders define;
-        (grey, None) where none does. A <uri> found nowhere is passed over, as Gazebo does
-        (its error line is not a warning here); each problem of the scripts is one warning."""
-        places = []
-        for uri in script.all("uri"):
-            try:
-                places.append(resolve_uri(uri.value, self.base_dir))
-            except AssetError:
-                continue
-        found, problems = self.material_scripts.material(name.value, places)
-        for problem in problems:
-            if not any(w.endswith(problem) for w in self.warnings):   # once per world
-                self.warn(name, problem)
-        if found is None:
-            return DEFAULT_RGBA, None
-        return found.rgba or DEFAULT_RGBA, found.texture
-
-    def pair_twins(self, shapes: List[Shape]) -> List[Shape]:
-        """Link each collision to the visual with the same geometry and pose, and colour it:
-        by its twin, else by the link's first visual."""
-        visuals = [s for s in shapes if not s.collision]
-        taken = set()
-        twins: Dict[str, str] = {}
-        for c in (s for s in shapes if s.collision):
-            for v in visuals:
-                if v.name not in taken and _same_geometry(c, v):
-                    twins[c.name], twins[v.name] = v.name, c.name
-                    taken.add(v.name)
-                    break
-        by_name = {v.name: v for v in visuals}
-        out = []
-        for s in shapes:
-            twin = twins.get(s.name)
-            if s.collision:
-                source = by_name.get(twin) if twin else (visuals[0] if visuals else None)
-                rgba = source.rgba if source else DEFAULT_RGBA
-                own = bool(source and source.mesh_colours and source.mesh == s.mesh)
-                texture = source.texture if twin else None     # the same face to draw it on
-                s = replace(s, rgba=rgba, twin=twin, mesh_colours=own, texture=texture)
-            elif twin:
-                s = replace(s, twin=twin)
-            out.append(s)
-        return out
 
 
 def _saved_poses(world: Element) -> Dict[str, Element]:
@@ -805,8 +501,9 @@ def _saved_poses(world: Element) -> Dict[str, Element]:
 
 
 def _with_saved_pose(node: Element, saved: Dict[str, Element]) -> Element:
-    """A top-level ``<model>`` or named ``<include>`` with its pose from the saved state."""
-    if node.tag == "model":
+    """A top-level ``<model>``, ``<actor>`` or named ``<include>`` with its pose from the
+    saved state."""
+    if node.tag in ("model", "actor"):
         name = node.attrib.get("name", "")
     else:
         name_node = node.child("name")
@@ -816,12 +513,6 @@ def _with_saved_pose(node: Element, saved: Dict[str, Element]) -> Element:
         return node
     children = [c for c in node.children if c.tag != "pose"] + [pose]
     return xml_reader.element(node.tag, node.attrib, node.line, children)
-
-
-def _same_geometry(a: Shape, b: Shape, tol: float = 1e-9) -> bool:
-    return (a.kind == b.kind and a.mesh == b.mesh and len(a.points) == len(b.points)
-            and all(abs(u - v) <= tol for u, v in zip(a.size + a.pose, b.size + b.pose))
-            and all(abs(u - v) <= tol for p, q in zip(a.points, b.points) for u, v in zip(p, q)))
 
 
 def _check_names(world: World) -> None:
@@ -835,13 +526,33 @@ def _check_names(world: World) -> None:
         seen[s.name] = s
 
 
+def _overridden(model: Element, include: Element, tags: Tuple[str, ...]) -> Element:
+    """The included ``model`` (or actor) with the include's <name> and each of its ``tags``
+    (<pose>, <static>) in place of the model's own."""
+    children = list(model.children)
+    for tag in tags:
+        override = include.child(tag)
+        if override is not None:
+            children = [c for c in children if c.tag != tag] + [override]
+    attrib = dict(model.attrib)
+    name_node = include.child("name")
+    if name_node is not None and name_node.value:
+        attrib["name"] = name_node.value
+    return xml_reader.element(model.tag, attrib, model.line, children)
+
+
 def load_world(path: str) -> World:
     """Parse the SDF file at ``path``; WorldError (one line: file, line, fault) if it cannot.
-    Its mesh files are first converted in parallel into the disk cache (mesh_cache)."""
-    from .mesh_cache import convert_world
-    convert_world(lambda: _Loader(path).document(_parse_xml(path)), path)
-    loader = _Loader(path)
-    world = loader.document(_parse_xml(path))
+
+    First its structure alone, reading no mesh: a refusal that needs no mesh content comes at
+    once. Then its mesh files are converted in parallel into the disk cache (mesh_cache), and
+    the world is read with them."""
+    from .mesh_prefetch import convert_world
+    root = _parse_xml(path)
+    shared = {"parsed": {}, "material_scripts": MaterialScripts()}
+    _check_names(_Loader(path, read_meshes=False, **shared).document(root))
+    convert_world(lambda: _Loader(path, **shared).document(root), path)
+    world = _Loader(path, **shared).document(root)
     _check_names(world)
     return world
 

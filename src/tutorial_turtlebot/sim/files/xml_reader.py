@@ -11,6 +11,7 @@ A DOCTYPE is refused (entities are never expanded), and so is nesting deeper tha
 ``MAX_DEPTH`` elements. No ROS, no pybullet.
 """
 import math
+import re
 from typing import Callable, List, NoReturn, Optional, Sequence, Tuple, Type, Union
 from xml.etree import ElementTree
 from xml.parsers import expat
@@ -91,6 +92,7 @@ def parse(data: Union[str, bytes], source: str, error: Type[UserError] = UserErr
     parser.EndElementHandler = end
     parser.CharacterDataHandler = builder.data
     parser.StartDoctypeDeclHandler = doctype
+    data = _declaration_first(data)
     try:
         parser.Parse(data, True)
     except _Refused as err:
@@ -99,6 +101,17 @@ def parse(data: Union[str, bytes], source: str, error: Type[UserError] = UserErr
         raise error(located(source, err.lineno, "", "malformed XML: %s (column %d)"
                             % (expat.ErrorString(err.code), err.offset + 1))) from None
     return builder.close()
+
+
+_LATE_DECLARATION = {str: re.compile(r"\A(\s+)(<\?xml[^>\n]*\?>)"),
+                     bytes: re.compile(rb"\A(\s+)(<\?xml[^>\n]*\?>)")}
+
+
+def _declaration_first(data: Union[str, bytes]) -> Union[str, bytes]:
+    """``data`` with an XML declaration that white space precedes put first (the white space
+    after it: every line keeps its number). Gazebo's TinyXML reads such files (published worlds
+    begin with blank lines); expat refuses them."""
+    return _LATE_DECLARATION[type(data)].sub(lambda m: m.group(2) + m.group(1), data, count=1)
 
 
 def parse_file(path: str, what: str, error: Type[UserError] = UserError) -> Element:

@@ -19,13 +19,15 @@ from .physics_properties import OdeConfig, PhysicsProperties, bullet_parameters
 from ...robot_models import model_limits, turtlebot3_model_of
 from .schedule import RateSchedule, seconds_to_ns, NS_PER_S
 from .sim_robot import ImuState, OdomState, RobotOptions, SimRobot, normalize_namespace
-from .spawn_check import check_spawn, footprint_radius, resting_height
+from .spawn_check import landed_pose, model_of_body, overlap_warning
 from ..files.urdf_file import RobotDescription, read_urdf, urdf_path
+from .actors import actor_motions
 from .world_models import (ENTITY_EXISTS, ModelRegistry, RequestError, RobotModel,
                            models_of_world, robot_model_name, spawn_failure, spawn_refusal,
                            urdf_model)
 from ..engine import gui_window
-from ..files.world_sdf import load_world, resolve_world
+from ..files.world_catalogue import WORLD_SUFFIXES, resolve_world
+from ..files.world_sdf import load_world
 
 __all__ = ["SimConfig", "Simulation", "OdomState", "ImuState"]
 # A robot's outputs in what step() returns: (the SimRobot, "odom"); the world's: (None, "clock").
@@ -106,11 +108,6 @@ class Simulation:
         options = config.robot_options()
         if config.spawn_robot:
             description = read_urdf(config.urdf or urdf_path(config.model, bool(config.camera)))
-            x, y, z, yaw = self.spawn
-            radius = footprint_radius(description)
-            z = resting_height(self.world, x, y, radius, z)   # on a raised floor, if any
-            check_spawn(self.world, x, y, radius, z=z)
-            self.spawn = (x, y, z, yaw)
         # Cameras render through EGL where it works; it must be loaded before any body. An
         # empty world (robots to be spawned) loads it in case one of them has a camera.
         wants_camera = (description is None
@@ -126,6 +123,7 @@ class Simulation:
         self.models = ModelRegistry(on_rebuild=self.forces.forget_model)
         for model in models_of_world(self.world, self.physics.world_bodies, self.physics.client):
             self.models.add(model)
+        self.actors = actor_motions(self.world, self.models)   # moved by their scripts
         self.step_ns = seconds_to_ns(config.time_step)
         self.time_ns = 0
         self.schedules: Dict[str, RateSchedule] = {"clock": RateSchedule(config.clock_rate)}
@@ -133,10 +131,11 @@ class Simulation:
         self._robot_list: List[SimRobot] = []
         self.robot: Optional[SimRobot] = None
         self.robot_name = config.robot_name or robot_model_name(
-            config.world if not config.world.endswith((".world", ".sdf")) else "", config.model)
-        if description is not None:
+            config.world if not config.world.endswith(WORLD_SUFFIXES) else "", config.model)
+        if description is not None:   # on the floor under it (spawn_check.landed_pose)
             x, y, z, yaw = self.spawn
-            pose = ((x, y, z), quat_from_yaw(yaw))
+            pose = landed_pose(self.physics, description, ((x, y, z), quat_from_yaw(yaw)))
+            self.spawn = (x, y, pose[0][2], yaw)
             try:
                 self.robot = self.add_robot(self.robot_name, "", description, pose, options)
             except RequestError as err:
@@ -175,7 +174,8 @@ class Simulation:
     def add_robot(self, name: str, namespace: str, description: RobotDescription, pose,
                   options: Optional[RobotOptions] = None) -> SimRobot:
         """Add a robot made from ``description``'s plugins, its root link at world ``pose``
-        ((x, y, z), (qx, qy, qz, qw)), its topics and frames in ``namespace``. RequestError
+        ((x, y, z), (qx, qy, qz, qw); on top of the floor under it if z is below that floor:
+        spawn_check.landed_pose), its topics and frames in ``namespace``. RequestError
         (Gazebo's status text) when the name or namespace is taken or illegal, or the robot
         cannot be built; nothing changes then."""
         if name in self.models:
@@ -188,15 +188,20 @@ class Simulation:
                                     "robot_namespace" % (other.name, namespace or "/"))
         if options is None:
             options = self.config.robot_options(description.name)
-        with spawn_refusal():
+        with spawn_refusal():   # on the floor under it; an overlap is one warning, as Gazebo
+            pose = landed_pose(self.physics, description, pose)
             robot = SimRobot(self.physics, name, namespace, description, pose, options,
                              self.time_ns, seed=self.config.seed + len(self.robots))
         try:
             model = urdf_model(RobotModel, name, robot.body.body,
                                collisions=description.collision_names(), robot_body=robot.body)
+            overlap = overlap_warning(self.physics, robot.body.robot, description, pose,
+                                      model_of_body(self.models))
         except BaseException:   # nothing of it stays in the world
             robot.body.remove()
             raise
+        if overlap is not None:
+            robot.warnings.append(overlap)
         self.models.add(model)
         self.robots[name] = robot
         self._robot_list.append(robot)
@@ -230,6 +235,8 @@ class Simulation:
             self.forces.apply(now)
         self.physics.step()
         self.time_ns = now = now + self.step_ns
+        for actor in self.actors:
+            actor.update(now)
         if now < self._next_output_ns:
             return []
         due: List[Due] = [(None, name) for name, s in self.schedules.items() if s.due(now)]
@@ -249,6 +256,7 @@ class Simulation:
         physics happens, so those steps run in a tight loop."""
         now, step_ns = self.time_ns, self.step_ns
         robots, forces, physics_step = self._robot_list, self.forces, self.physics.step
+        actors = self.actors
         done = 0
         while done < steps:
             for robot in robots:
@@ -256,12 +264,16 @@ class Simulation:
             if forces.active:
                 forces.apply(now)
                 free = 0
+            elif actors:   # an actor's frame may fall due at any step (actors.ActorMotion)
+                free = 0
             else:   # the steps before any drive is due: before_step would do nothing
                 next_ns = min([robot.next_tick_ns() for robot in robots], default=math.inf)
                 free = (min(steps - done - 1, -((now + step_ns - next_ns) // step_ns))
                         if next_ns != math.inf else steps - done - 1)
             physics_step()
             now += step_ns
+            for actor in actors:
+                actor.update(now)
             if free > 0:
                 for _ in range(free):
                     physics_step()
@@ -291,6 +303,8 @@ class Simulation:
         for robot in self._robot_list:
             robot.reset_state(self.time_ns)
         self._reset_schedules()
+        for actor in self.actors:    # each script starts again (Gazebo's Actor::Reset)
+            actor.restart(self.time_ns)
 
     def reset_simulation(self) -> None:
         """Everything back to its spawn and sim time back to 0 (Gazebo's reset_simulation)."""

@@ -1,95 +1,160 @@
-"""Refuse a spawn pose that puts the robot inside an obstacle. Knows nothing of ROS or pybullet.
+"""Where a robot spawned or teleported stands, and what it overlaps there, as Gazebo has it.
 
-The robot is taken as an upright cylinder about its spawn point: ``footprint_radius`` wide, from
-``FLOOR_CLEARANCE`` above the floor up to ``height``. A world's collision shapes (``world_sdf``)
-that overlap that cylinder are obstacles; planes are floors and never are. Shapes whose axis
-stands upright (every shape of this package's worlds) are measured exactly in plan; a tilted one
-is measured at a few heights of the cylinder's axis (close, not exact). A mesh is measured
-against the plan view of its triangles that reach into the cylinder's heights (whole triangles,
-so a sloping face can count as a little nearer than it is), and the point is inside it when a ray
-from the cylinder's axis crosses its surface an odd number of times.
+Gazebo refuses no spawn for overlap: it puts a robot where it is asked to and lets the contacts
+push it out. Here a robot asked to stand below the floor under it is put on top of that floor
+at once (``landed_pose``: its spawn, spawn_model, set_model_state, set_link_state), and a robot
+that overlaps a model where it stands is spawned all the same, with one warning
+(``overlap_warning``).
 
-Units: metres, in the world frame (z up), as in world_sdf.
+**The landing rule.** The robot is measured by its URDF's collision geometry, turned as asked:
+its top (m above its root link, base_footprint on a TurtleBot3) and its reach (m from the root's
+vertical axis, in plan). Rays are cast straight down (pybullet's, on the world's collision
+geometry as it is: boxes, cylinders, polylines, meshes open or closed) at the root's (x, y) and
+at points on two circles about it (the reach, and half of it), from the robot's top at the
+requested pose down to the requested z. The highest static surface they meet is the floor under
+the robot: if it lies more than LIFT_TOLERANCE above the requested z, the root link is put on
+it (same x, y and orientation); otherwise the pose is kept as given (a robot above the floor
+falls, as in Gazebo). So a surface counts only if it is below the robot's own top at the
+requested pose: a table top, a shelf, anything above the robot's head is never climbed onto (the
+robot stands under it), and a floor higher than the robot itself (a 0.3 m stage under a robot
+asked for z 0) is not found either: the robot overlaps it, and the warning proposes its top as
+z_pos. Movable models and other robots are no floor (the rays pass them by).
+
+**Overlap.** Once the robot is placed: Bullet's closest points between its body and every other
+body near it. A penetration deeper than OVERLAP_DEPTH (a TurtleBot3's caster dips 5 mm below its
+wheels into the floor it stands on) is an overlap, named in one line with the model and a
+``z_pos`` that stands the robot on top of it. A robot wholly inside a closed mesh touches none
+of its triangles: neither Gazebo nor this sim pushes it out, and no warning is given.
+
+``find_obstacle`` measures a world file's shapes in plan, without physics, for tests and tools
+that look for a clear spot; the sim refuses nothing with it.
+
+Units: metres, radians, in the world frame (z up) unless a docstring says otherwise.
 """
 import math
-import os
-from typing import Iterable, Optional, Sequence, Tuple
+from typing import Callable, Iterable, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ...errors import WorldError
-from ..kinematics import cross_2d, matrix_from_rpy
+from ..kinematics import Pose, cross_2d, matrix_from_rpy, rotation_matrix
 from ..files.mesh_file import load_mesh
-from ..files.world_sdf import Shape, World
+from ..files.world_types import Shape, World
 
-FLOOR_CLEARANCE = 0.01   # m: shapes entirely below this are floor coverings the robot drives on
-DEFAULT_HEIGHT = 0.2     # m: the top of the robot (burger 0.192, waffle 0.141, above the floor)
-TILTED_SAMPLES = 21      # heights at which a tilted shape is measured
-MAX_STEP = 0.05          # m: a shape whose top is at most this above a robot's base is a floor
-                         # it is put on (resting_height); a TurtleBot3 wheel's radius is 0.033
-MAX_STEPS = 4            # raised floors stacked on each other that resting_height climbs
+LIFT_TOLERANCE = 0.001   # m: a floor at most this above the requested z leaves the pose as given
+OVERLAP_DEPTH = 0.01     # m: a penetration at most this deep is no overlap (resting contacts)
+RING_POINTS = 12         # rays on each of the two circles about the root (and one at it)
+PROPOSAL_MARGIN = 0.01   # m: the rays that find a proposed z_pos start this above the model
+MAX_MODEL_NAME = 40      # characters of the model's name in the warning (160 in all at most)
+FLOOR_CLEARANCE = 0.01   # m: find_obstacle: shapes wholly below this are floor coverings
+DEFAULT_HEIGHT = 0.2     # m: find_obstacle: the robot's top (burger 0.191, waffle 0.141)
+TILTED_SAMPLES = 21      # find_obstacle: heights at which a tilted shape is measured
 
 Point = Tuple[float, float]
 
 
-def check_spawn(world: World, x: float, y: float, footprint_radius: float, z: float = 0.0,
-                height: float = DEFAULT_HEIGHT) -> None:
-    """Raise WorldError (one line naming the pose and the obstacle) if a robot of
-    ``footprint_radius`` (m) spawned with base_footprint at (x, y, z) would stand inside or
-    overlap one of ``world``'s collision shapes; return None if it stands clear."""
-    hit = find_obstacle(world, x, y, footprint_radius, z, height)
-    if hit is None:
-        return
-    shape, distance = hit
-    where = "spawn (%s, %s)" % (_number(x), _number(y))
-    world_file = os.path.basename(world.path)
-    if distance <= 0.0:
-        raise WorldError("%s is inside %s (%s): choose another x_pos, y_pos"
-                         % (where, shape.name, world_file))
-    raise WorldError("%s is %.3f m from %s (%s): a robot of footprint radius %.3f m would stand "
-                     "in it: choose another x_pos, y_pos"
-                     % (where, distance, shape.name, world_file, footprint_radius))
+# --- landing on the floor ----------------------------------------------------------------------
+
+def collision_points(description) -> np.ndarray:
+    """(N, 3) points (m, in the root link's frame) outlining every collision shape of a robot
+    (urdf_file.RobotDescription): a box's corners, 32 points on each rim of a cylinder, 26 on a
+    sphere, a mesh's vertices (scaled)."""
+    root = description.root_link
+    out = [np.zeros((1, 3))]
+    for name, link in description.links.items():
+        for collision in link.collisions:
+            pose = description.transform(root, name) @ collision.origin.matrix()
+            local = _shape_points(collision.geometry)
+            out.append(local @ pose[:3, :3].T + pose[:3, 3])
+    return np.concatenate(out)
 
 
-def resting_height(world: World, x: float, y: float, footprint_radius: float, z: float = 0.0,
-                   height: float = DEFAULT_HEIGHT) -> float:
-    """The z at which a robot spawned at (x, y, z) stands: ``z``, or the top of a raised floor
-    under it. A shape in the robot's footprint whose top there is at most MAX_STEP above its
-    base is such a floor (a platform, a floor mesh a little above 0): the robot is put on it,
-    as Gazebo's physics would push a robot spawned into it up onto it. Higher shapes stay
-    obstacles for check_spawn."""
-    for _ in range(MAX_STEPS):
-        hit = find_obstacle(world, x, y, footprint_radius, z, height)
-        if hit is None:
-            return z
-        top = _top_near(hit[0], x, y, footprint_radius)
-        if top is None or not z < top <= z + MAX_STEP:
-            return z
-        z = top
-    return z
+def _shape_points(geometry) -> np.ndarray:
+    shape, size = geometry.shape, geometry.size
+    if shape == "box":
+        return np.array([(sx * size[0] / 2, sy * size[1] / 2, sz * size[2] / 2)
+                         for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    if shape == "cylinder":
+        radius, length = size
+        angles = np.linspace(0.0, 2 * math.pi, 32, endpoint=False)
+        return np.array([(radius * math.cos(a), radius * math.sin(a), sz * length / 2)
+                         for a in angles for sz in (-1, 1)])
+    if shape == "sphere":
+        steps = (-1, 0, 1)
+        directions = np.array([(i, j, k) for i in steps for j in steps for k in steps
+                               if (i, j, k) != (0, 0, 0)], dtype=float)
+        return size[0] * directions / np.linalg.norm(directions, axis=1)[:, None]
+    return np.asarray(load_mesh(geometry.filename, size).vertices, dtype=float)
 
 
-def _top_near(shape: Shape, x: float, y: float, radius: float) -> Optional[float]:
-    """The highest z of ``shape`` within ``radius`` of (x, y) in plan: exact for an upright
-    primitive, whole triangles for a mesh; None for a tilted primitive (not a floor)."""
-    rotation = matrix_from_rpy(*shape.pose[3:])
-    centre = np.array(shape.pose[:3])
-    if shape.kind == "mesh":
-        mesh = load_mesh(shape.mesh, shape.size)
-        triangles = (mesh.vertices @ rotation.T + centre)[mesh.faces]
-        near = _plan_triangle_distances(triangles[:, :, :2], np.array((x, y))) <= radius
-        return float(triangles[near][:, :, 2].max()) if near.any() else None
-    if abs(abs(rotation[2, 2]) - 1.0) > 1e-9:
-        return None
-    low, high = _local_z_range(shape)
-    return float(max(centre[2] + rotation[2, 2] * low, centre[2] + rotation[2, 2] * high))
+def robot_extent(points: np.ndarray, orientation) -> Tuple[float, float]:
+    """(top, reach) of a robot's ``collision_points`` turned by ``orientation`` (x, y, z, w):
+    its highest point above the root link and its farthest from the root's vertical axis (m)."""
+    turned = points @ rotation_matrix(orientation).T
+    return float(turned[:, 2].max()), float(np.hypot(turned[:, 0], turned[:, 1]).max())
 
+
+def footprint_points(x: float, y: float, reach: float) -> np.ndarray:
+    """(N, 2) world (x, y) where the rays are cast: the root's and RING_POINTS on each of the
+    circles of radius ``reach`` and ``reach`` / 2 about it."""
+    angles = np.linspace(0.0, 2 * math.pi, RING_POINTS, endpoint=False)
+    ring = np.stack((np.cos(angles), np.sin(angles)), axis=1)
+    return np.concatenate(([(x, y)], (x, y) + reach * ring, (x, y) + reach / 2 * ring))
+
+
+def landed_pose(physics, description, pose: Pose) -> Pose:
+    """``pose`` ((x, y, z), quaternion) of a robot's root link, with z raised to the top of
+    the floor under the robot where that lies above z (the landing rule, above); ``pose``
+    itself where it does not. ``physics``: the engine's WorldPhysics."""
+    (x, y, z), orientation = pose
+    top, reach = robot_extent(collision_points(description), orientation)
+    if not top > LIFT_TOLERANCE:
+        return pose
+    floors = physics.surfaces_below(footprint_points(x, y, reach), z + top, z)
+    floor = float(np.nanmax(floors)) if not np.all(np.isnan(floors)) else -math.inf
+    if floor > z + LIFT_TOLERANCE:
+        return (x, y, floor), orientation
+    return pose
+
+
+# --- overlap -------------------------------------------------------------------------------------
+
+def overlap_warning(physics, body: int, description, pose: Pose,
+                    model_of: Callable[[int], Optional[str]]) -> Optional[str]:
+    """One line (at most 160 characters) when the robot ``body``, placed at ``pose``, overlaps
+    a model (``model_of``: the name of the model a body id belongs to, None for none): the
+    deepest, with a z_pos that stands the robot on it; None when it overlaps nothing."""
+    for uid, _, depth, model_top in physics.overlaps(body, OVERLAP_DEPTH):
+        name = model_of(uid)
+        if name is None:
+            continue
+        (x, y, z), orientation = pose
+        _, reach = robot_extent(collision_points(description), orientation)
+        tops = physics.surfaces_below(footprint_points(x, y, reach),
+                                      model_top + PROPOSAL_MARGIN, z, static_only=False)
+        proposal = float(np.nanmax(tops)) if not np.all(np.isnan(tops)) else model_top
+        if len(name) > MAX_MODEL_NAME:
+            name = name[:MAX_MODEL_NAME - 3] + "..."
+        return ("at (%s, %s, %s) it overlaps %s by %.3f m, spawned as Gazebo would: move it, "
+                "or give z_pos %.3f to stand on top" % (_number(x), _number(y), _number(z),
+                                                        name, depth, proposal))
+    return None
+
+
+def model_of_body(models) -> Callable[[int], Optional[str]]:
+    """The name of the model of a ModelRegistry ``models`` that a pybullet body id belongs to
+    (None for a body of no model), as a function."""
+    owners = {part.body.uid: model.name for model in models.models() for part in model.parts}
+    return owners.get
+
+
+# --- a world file's shapes in plan ---------------------------------------------------------------
 
 def find_obstacle(world: World, x: float, y: float, footprint_radius: float, z: float = 0.0,
                   height: float = DEFAULT_HEIGHT) -> Optional[Tuple[Shape, float]]:
     """The nearest collision shape within ``footprint_radius`` of (x, y) in plan, over the
     heights z + FLOOR_CLEARANCE .. z + height, with its distance (m; <= 0 when (x, y) is inside
-    it); None if there is none."""
+    a primitive; a mesh has no inside here: an open mesh has none, so its nearest triangle is
+    measured); None if there is none."""
     if not footprint_radius >= 0.0 or not height > FLOOR_CLEARANCE:
         raise ValueError("footprint_radius must be >= 0 and height > %g m" % FLOOR_CLEARANCE)
     band = (z + FLOOR_CLEARANCE, z + height)
@@ -115,7 +180,8 @@ def _mesh_farther(shape: Shape, x: float, y: float, radius: float) -> bool:
 
 def plan_distance(shape: Shape, x: float, y: float, band: Tuple[float, float]) -> Optional[float]:
     """Horizontal distance (m) from the vertical line through (x, y) to ``shape`` within the
-    heights ``band`` (negative inside it); None if the shape lies wholly above or below."""
+    heights ``band`` (negative inside a primitive); None if the shape lies wholly above or
+    below."""
     rotation = matrix_from_rpy(*shape.pose[3:])
     centre = np.array(shape.pose[:3])
     if shape.kind == "mesh":
@@ -182,14 +248,12 @@ def _point_distance(shape: Shape, lx: float, ly: float, lz: float) -> float:
 def _mesh_distance(triangles: np.ndarray, x: float, y: float,
                    band: Tuple[float, float]) -> Optional[float]:
     """Plan distance from (x, y) to the (M, 3, 3) world-frame ``triangles`` that reach into the
-    heights ``band`` (negative inside the closed surface); None if none does."""
+    heights ``band``; None if none does."""
     z = triangles[:, :, 2]
     near = triangles[(z.max(axis=1) > band[0]) & (z.min(axis=1) < band[1])]
     if not len(near):
         return None
-    distance = float(_plan_triangle_distances(near[:, :, :2], np.array((x, y))).min())
-    inside = _crossings(triangles, np.array((x, y, (band[0] + band[1]) / 2))) % 2 == 1
-    return -distance if inside else distance
+    return float(_plan_triangle_distances(near[:, :, :2], np.array((x, y))).min())
 
 
 def _plan_triangle_distances(tri: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -208,23 +272,6 @@ def _plan_triangle_distances(tri: np.ndarray, p: np.ndarray) -> np.ndarray:
         ((cross[0] >= 0) & (cross[1] >= 0) & (cross[2] >= 0))
         | ((cross[0] <= 0) & (cross[1] <= 0) & (cross[2] <= 0)))
     return np.where(inside, 0.0, best)
-
-
-def _crossings(tri: np.ndarray, origin: np.ndarray) -> int:
-    """How many of the (M, 3, 3) triangles a ray from ``origin`` along +x (tilted a hair off
-    the axes, so that it misses edges and corners) crosses (Moller-Trumbore)."""
-    direction = np.array((1.0, 1.3e-7, 0.7e-7))
-    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
-    h = np.cross(direction, e2)
-    det = np.einsum("ij,ij->i", e1, h)
-    ok = np.abs(det) > 1e-14
-    inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
-    s = origin - tri[:, 0]
-    u = np.einsum("ij,ij->i", s, h) * inv
-    q = np.cross(s, e1)
-    v = (q @ direction) * inv
-    t = np.einsum("ij,ij->i", e2, q) * inv
-    return int(np.count_nonzero(ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)))
 
 
 def _rectangle_distance(px: float, py: float, half_x: float, half_y: float) -> float:

@@ -38,7 +38,8 @@ from ..files.urdf_file import RobotDescription, read_urdf_element
 from ..files.urdf_meshes import absolute_meshes, mesh_paths
 from ..engine.world_bullet import MOVABLE_KINDS
 from .world_models import RequestError, spawn_failure, spawn_refusal
-from ..files.world_sdf import World, load_model_xml
+from ..files.world_sdf import load_model_xml
+from ..files.world_types import World
 from ..files.xml_reader import Element
 
 MAX_XML_BYTES = 1_000_000

@@ -26,6 +26,7 @@ from ..files import limits
 from . import reference_frames as rf
 from .physics_properties import PhysicsProperties, validate
 from .reference_frames import Pose, Twist
+from .spawn_check import landed_pose
 from .spawn_request import SpawnRequest, placed, prepare_spawn
 from ..engine.world_bullet import (body_pool, build_world, place_world_bodies,
                                    reused_world_bodies)
@@ -163,7 +164,8 @@ class WorldControl:
 
     def set_model_state(self, name: str, pose: Pose, twist: Twist, reference: str = "") -> None:
         """Teleport model ``name`` (quaternion normalised, all-zero = identity) and give it
-        ``twist``; with a reference frame the pose is in that frame and the twist rotated."""
+        ``twist``; with a reference frame the pose is in that frame and the twist rotated. A
+        robot asked below the floor under it stands on that floor (spawn_check.landed_pose)."""
         _check_names("SetModelState: ", model_name=name, reference_frame=reference)
         pose, twist = _checked_state("SetModelState", pose, twist)
         model = self._model(name, "SetModelState")
@@ -173,7 +175,7 @@ class WorldControl:
             twist = rf.model_twist_to_world(twist, frame[0][1])
             _checked_world_state("SetModelState", pose, twist)
             pose = (pose[0], limits.unit_quaternion(pose[1]))
-        model.set_state(pose, (tuple(twist[0]), tuple(twist[1])))
+        model.set_state(self._landed(name, pose), (tuple(twist[0]), tuple(twist[1])))
 
     def _link(self, scoped: str, what: str):
         model_name, sep, link_name = scoped.rpartition("::")
@@ -209,7 +211,15 @@ class WorldControl:
             twist = rf.link_twist_to_world(twist, frame[1])
             _checked_world_state("SetLinkState", pose, twist)
             pose = (pose[0], limits.unit_quaternion(pose[1]))
-        model.set_link_state(link, pose, twist)
+        model.set_link_state(link, self._landed(model.name, pose), twist)
+
+    def _landed(self, name: str, pose: Pose) -> Pose:
+        """A robot's root link ``pose`` put on top of the floor under it when its z is below
+        that floor (spawn_check.landed_pose); any other model's pose as given."""
+        robot = self.sim.robots.get(name)
+        if robot is None:
+            return pose
+        return landed_pose(self.sim.physics, robot.description, pose)
 
     def model_states(self) -> List[Tuple[str, Pose, Twist]]:
         """(name, pose, twist) of every model in world order."""
@@ -523,14 +533,16 @@ class WorldControl:
                                                        t[1, 2], t[2, 2])))
 
     def set_link_properties(self, scoped: str, com: Sequence[float], gravity_mode: bool,
-                            mass: float, inertia: Sequence[float]) -> None:
+                            mass: float, inertia: Sequence[float],
+                            com_orientation: Sequence[float] = (0.0, 0.0, 0.0, 1.0)) -> None:
         """Set a link's mass (kg), inertia (ixx, ixy, ixz, iyy, iyz, izz about its centre of
         mass, link axes, kg m^2) and whether gravity pulls it. ``com`` (the centre of mass in
         the link frame, m) must stay where it is: pybullet cannot move it in a built body;
-        the com orientation is ignored, as Gazebo ignores it."""
+        ``com_orientation`` (a quaternion x y z w) must be finite and is otherwise ignored, as
+        Gazebo ignores it."""
         found = self._properties_link(scoped, "SetLinkProperties")
         model, link = found
-        if not rf.finite(com, (mass,), inertia):
+        if not rf.finite(com, (mass,), inertia, com_orientation):
             raise RequestError("SetLinkProperties: NaN or infinite value in the request")
         if link.body is None:
             raise RequestError("SetLinkProperties: link %r is static here: it has no mass to set"

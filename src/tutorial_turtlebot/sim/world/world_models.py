@@ -19,7 +19,7 @@ from ..engine.world_bullet import build_world, link_com_pose
 from . import reference_frames as rf
 from ..kinematics import pose_from_xyz_rpy
 from .reference_frames import Pose, Twist
-from ..files.world_sdf import World
+from ..files.world_types import World
 
 
 class RequestError(Exception):

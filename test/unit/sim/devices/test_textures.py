@@ -13,11 +13,12 @@ import pytest
 
 from tutorial_turtlebot.sim.devices import camera
 from tutorial_turtlebot.sim.engine import rendering
-from tutorial_turtlebot.sim.files import mesh_file
+from tutorial_turtlebot.sim.files import texture_images
 from tutorial_turtlebot.sim.engine import physics as physics_module
 from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
 from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
-from tutorial_turtlebot.sim.files.mesh_file import cache_clear, load_mesh, write_obj_parts
+from tutorial_turtlebot.sim.files.mesh_file import cache_clear, load_mesh
+from tutorial_turtlebot.sim.files.obj_writer import write_obj_parts
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files import urdf_meshes
 from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
@@ -274,14 +275,14 @@ def test_an_unusable_texture_is_one_line_and_the_colour(tmp_path, content, why):
     [part] = load_mesh(str(tmp_path / "box.obj")).parts
     assert part.texture is None and part.uvs is None and part.rgba == (0.0, 0.0, 1.0, 1.0)
     assert why in part.texture_problem and "\n" not in part.texture_problem
-    assert part.texture_problem.startswith(str(tmp_path / "box.obj") + ": texture tex.png")
+    assert part.texture_problem.startswith("box.obj: texture tex.png")
 
 
 def test_a_texture_larger_than_side_files_is_not_read(tmp_path, monkeypatch):
     write_textured_obj(tmp_path, kd="1 0 0", write_texture=False)
     noise = np.random.default_rng(0).integers(0, 256, (64, 64, 3), dtype=np.uint8)
     (tmp_path / "tex.png").write_bytes(png_bytes(noise))     # about 12 kB
-    monkeypatch.setattr(mesh_file, "MAX_MESH_SIDE_FILE_BYTES", 4000)
+    monkeypatch.setattr(texture_images, "MAX_MESH_SIDE_FILE_BYTES", 4000)
     [part] = load_mesh(str(tmp_path / "box.obj")).parts
     assert part.texture is None and "more than the 4000 allowed" in part.texture_problem
     assert part.rgba == (1.0, 0.0, 0.0, 1.0)
@@ -293,8 +294,8 @@ def test_jpeg_textures_are_taken(tmp_path):
     for progressive in (False, True):
         pil.fromarray(quadrant_texture(32)).save(str(tmp_path / "tex.jpg"), "JPEG",
                                                  progressive=progressive)
-        assert mesh_file.image_problem((tmp_path / "tex.jpg").read_bytes()) is None
-        assert mesh_file._jpeg_size((tmp_path / "tex.jpg").read_bytes()) == (32, 32)
+        assert texture_images.image_problem((tmp_path / "tex.jpg").read_bytes()) is None
+        assert texture_images.jpeg_size((tmp_path / "tex.jpg").read_bytes()) == (32, 32)
         cache_clear()
         [part] = load_mesh(str(tmp_path / "box.obj")).parts
         assert part.texture == str(tmp_path / "tex.jpg")
@@ -369,13 +370,14 @@ def test_a_urdf_robot_names_its_missing_texture_in_one_warning(tmp_path):
       <visual><origin xyz="1 0 0"/><geometry><mesh filename="box.obj"/></geometry></visual>
       </link></robot>""")
     [line] = urdf_meshes.texture_warnings(read_urdf(str(tmp_path / "r.urdf")))
-    assert line.startswith(str(tmp_path / "box.obj") + ": texture gone.png not drawn (found nowhere")
+    assert line.startswith("box.obj: texture gone.png not drawn (found nowhere")
 
 
 def test_the_common_gazebo_materials_have_colours():
     """Gazebo 11's common gazebo.material names are drawn in a colour of their own (the
     textured ones in their texture's mean colour), not the grey of an unknown name."""
-    from tutorial_turtlebot.sim.files.world_sdf import DEFAULT_RGBA, GAZEBO_MATERIALS
+    from tutorial_turtlebot.sim.files.gazebo_materials import GAZEBO_MATERIALS
+    from tutorial_turtlebot.sim.files.world_types import DEFAULT_RGBA
     names = ("White Grey DarkGrey Black FlatBlack Red RedBright Green Blue SkyBlue Yellow "
              "ZincYellow DarkYellow Purple Turquoise Orange Indigo Wood WoodFloor WoodPallet "
              "Bricks Gold Residential Tertiary Road Asphalt Trunk Leaf CeilingTiled LightWood "
@@ -385,25 +387,3 @@ def test_the_common_gazebo_materials_have_colours():
         assert len(rgba) == 4 and all(0.0 <= v <= 1.0 for v in rgba), name
         assert name == "Grey" or rgba != DEFAULT_RGBA, name
     assert GAZEBO_MATERIALS["Gazebo/Red"] == (1.0, 0.0, 0.0, 1.0)
-
-
-def test_textures_beyond_the_budget_are_drawn_in_their_colour(tmp_path, monkeypatch, capfd):
-    """TinyRenderer decodes a texture once per visual that uses it: past MAX_TEXTURE_PIXELS
-    per simulation, a textured mesh is drawn in its colours, with one line on stderr."""
-    write_textured_obj(tmp_path, kd="1 0 0")           # 16 x 16 px texture, tinted red
-    monkeypatch.setattr(rendering, "MAX_TEXTURE_PIXELS", 300)
-    world = write_world(tmp_path, mesh_model("first", "box.obj", y=0.4),
-                        mesh_model("second", "box.obj", y=-0.4))
-    sim = simulation(monkeypatch, world, "tiny")
-    try:
-        rgb, _ = sim.robot.camera_image()
-        # the first fits (256 px): red tints the texture, so red and yellow stay red, the rest
-        # goes black; the second is drawn in its Kd alone: red all over
-        assert looks(face_colour(sim, rgb, 0.4 + 0.075, 0.45), RED)
-        assert looks(face_colour(sim, rgb, 0.4 - 0.075, 0.45), (0, 0, 0))
-        for y, z in quadrant_points(-0.4).values():
-            assert looks(face_colour(sim, rgb, y, z), RED)
-    finally:
-        sim.close()
-    err = capfd.readouterr().err
-    assert err.count("texture pixels in this simulation") == 1 and "second" in err

@@ -23,7 +23,7 @@ def test_fd_1_and_2_are_silenced_and_told(capfd):
     with quiet_output() as printed:
         os.write(1, b"raw to fd 1\n")
         os.write(2, b"raw to fd 2\n")
-        LIBC.printf(b"C printf, buffered\n")        # stdio's buffer: flushed into the pipe
+        LIBC.printf(b"C printf, buffered\n")        # stdio's buffer: flushed into the sink
         LIBC.write(2, b"C write to fd 2\n", 16)
     out, err = capfd.readouterr()
     assert "raw to fd" not in out + err and "C " not in out + err
@@ -65,10 +65,29 @@ def test_descriptors_restored_and_closed_after_an_error(capfd):
         with quiet_output():
             os.write(1, b"lost\n")
             raise RuntimeError("inside")
-    assert open_fds() == before                       # the pipe and the copies are closed
+    assert open_fds() == before                       # the sink and the copies are closed
     os.write(1, b"after the error\n")
     out, _ = capfd.readouterr()
     assert "after the error" in out and "lost" not in out
+
+
+def test_megabytes_written_while_holding_the_gil_never_block():
+    """A loader that prints more than a pipe holds (64 KB) while Python's GIL is held (as
+    pybullet's does) must not wait for a reader: a child process writes 8 MB from C through
+    ctypes' PyDLL (which keeps the GIL during the call) inside quiet_output, and ends."""
+    code = ("import ctypes\n"
+            "from tutorial_turtlebot.sim.engine.bullet import quiet_output\n"
+            "libc = ctypes.PyDLL(None)\n"
+            "block = b'\\t' * (1 << 20)\n"
+            "with quiet_output() as printed:\n"
+            "    for _ in range(8):\n"
+            "        libc.write(1, block, len(block))\n"
+            "    kept = len(printed())\n"
+            "print('done', kept)\n")
+    child = subprocess.run([sys.executable, "-c", code], stdin=subprocess.DEVNULL,
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+    assert child.returncode == 0, child.stderr
+    assert child.stdout.split() == [b"done", b"1048576"]     # KEPT_OUTPUT of it is kept
 
 
 def test_pybullet_is_imported_without_its_build_date():

@@ -4,10 +4,9 @@ import os
 import pytest
 
 from tutorial_turtlebot.sim.files.asset_uri import (PACKAGE_MODELS, AssetError, AssetNotFound,
-                                              ModelPath, _ros_exported_model_paths,
-                                              case_mismatch, model_sdf_file, resolve_uri,
-                                              split_uri)
-from tutorial_turtlebot.sim.files.world_sdf import parse_xml
+                                              ModelLeftOut, ModelPath,
+                                              _ros_exported_model_paths, case_mismatch,
+                                              model_sdf_file, resolve_uri, split_uri)
 
 
 def make_model(folder, name, versions=(("1.6", "model.sdf"),)):
@@ -104,30 +103,100 @@ def test_file_uris_and_paths_are_relative_to_the_naming_file(tmp_path):
 def test_model_config_picks_the_newest_sdf_gazebo_reads(tmp_path):
     folder = make_model(tmp_path, "m", (("1.4", "model-1_4.sdf"), ("1.6", "model.sdf"),
                                         ("1.10", "future.sdf")))
-    assert model_sdf_file(str(folder), parse_xml) == str(folder / "model.sdf")
-    (folder / "model.config").write_text('<model><sdf version="2.0">x.sdf</sdf></model>')
-    with pytest.raises(AssetError, match="model.config:1: model.config names no"):
-        model_sdf_file(str(folder), parse_xml)
+    assert model_sdf_file(str(folder)) == str(folder / "model.sdf")
+
+
+def test_without_a_version_it_reads_the_first_entry_as_sdformat_9_does(tmp_path):
+    """sdformat 9's getBestSupportedModelVersion starts from the first <sdf> and keeps it when
+    no entry has a version up to 1.7 (one too new is "ignored", and then taken all the same)."""
+    folder = tmp_path / "m"
+    folder.mkdir()
+    (folder / "x.sdf").write_text('<sdf version="1.6"><model name="m"/></sdf>')
+    (folder / "y.sdf").write_text('<sdf version="1.6"><model name="m"/></sdf>')
+    (folder / "model.config").write_text('<model><sdf version="2.0">x.sdf</sdf>'
+                                         '<sdf version="1.9">y.sdf</sdf></model>')
+    assert model_sdf_file(str(folder)) == str(folder / "x.sdf")
+
+
+def test_a_model_config_naming_no_file_leaves_the_model_out(tmp_path):
+    """Gazebo cannot take a file from these: it leaves the model out (a warning, the world
+    loads: test_world_includes.py)."""
+    folder = tmp_path / "m"
+    folder.mkdir()
+    for config in ('<model><name>m</name></model>', '<model><sdf version="1.6"> </sdf></model>',
+                   '<package><sdf version="1.6">m.sdf</sdf></package>'):
+        (folder / "model.config").write_text(config)
+        with pytest.raises(ModelLeftOut, match="model.config:1: .*Gazebo leaves the model out"):
+            model_sdf_file(str(folder))
     (folder / "model.config").unlink()
-    with pytest.raises(AssetError, match="has no model.config"):
-        model_sdf_file(str(folder), parse_xml)
+    with pytest.raises(ModelLeftOut, match="has no model.config"):
+        model_sdf_file(str(folder))
+    (folder / "manifest.xml").write_text('<model><sdf version="1.5">m.sdf</sdf></model>')
+    (folder / "m.sdf").write_text('<sdf version="1.5"><model name="m"/></sdf>')
+    assert model_sdf_file(str(folder)) == str(folder / "m.sdf")     # sdformat 9 reads it
 
 
-@pytest.mark.parametrize("version", ["-1", "1.x", "", "0", "0.0", "1.-6", "v1.6", "1.6.0.1"])
-def test_a_version_that_is_no_version_is_never_taken(tmp_path, version):
-    """Gazebo reads these as 0.0.0, which it never takes over a real one; alone they leave
-    model.config naming no SDF file Gazebo 11 reads."""
+@pytest.mark.parametrize("version", ["-1", "1.x", "", "0", "0.0", "1.-6", "v1.6", "1.6.0.1",
+                                     "1" * 5000, "1." + "6" * 5000])
+def test_a_version_that_is_no_version_loses_to_a_real_one(tmp_path, version):
+    """Gazebo reads these as 0.0.0, which never wins over a real version; alone, the first
+    entry is taken (as it is without a version)."""
     folder = make_model(tmp_path, "m", ((version, "odd.sdf"),))
-    with pytest.raises(AssetError, match="model.config:1: model.config names no"):
-        model_sdf_file(str(folder), parse_xml)
-    folder = make_model(tmp_path / "two", "m", (("1.5", "model.sdf"), (version, "odd.sdf")))
-    assert model_sdf_file(str(folder), parse_xml) == str(folder / "model.sdf")
+    assert model_sdf_file(str(folder)) == str(folder / "odd.sdf")
+    folder = make_model(tmp_path / "two", "m", ((version, "odd.sdf"), ("1.5", "model.sdf")))
+    assert model_sdf_file(str(folder)) == str(folder / "model.sdf")
 
 
 def test_versions_are_compared_as_numbers(tmp_path):
     folder = make_model(tmp_path, "m", (("1.6.1", "patch.sdf"), ("1.6", "model.sdf"),
                                         ("1.10", "future.sdf")))
-    assert model_sdf_file(str(folder), parse_xml) == str(folder / "patch.sdf")
+    assert model_sdf_file(str(folder)) == str(folder / "patch.sdf")
+
+
+# --- model.config read as leniently as Gazebo's TinyXML reads it --------------------------------
+
+LENIENT = {
+    "a bare & in the description": '<description>rail & closed curtain</description>',
+    "an entity TinyXML does not know": '<description>caf&eacute; &nbsp; &#xe9;</description>',
+    "a < that starts no tag": '<description>1 < 2 and 3 > 2</description>',
+    "an unquoted attribute": '<author email=a@b.c>x</author>',
+    "a DOCTYPE": '',
+    "a control character": '<description>bell\x07</description>',
+}
+
+
+@pytest.mark.parametrize("case", sorted(LENIENT))
+def test_model_config_is_read_as_leniently_as_tinyxml_reads_it(tmp_path, case):
+    folder = tmp_path / "m"
+    folder.mkdir()
+    doctype = '<!DOCTYPE model [<!ENTITY x "y">]>\n' if case == "a DOCTYPE" else ""
+    (folder / "model.config").write_bytes(
+        ('<?xml version="1.0"?>\n%s<model>\n<name>m</name>\n%s\n<sdf version=1.6>model.sdf'
+         '</sdf>\n</model>\n' % (doctype, LENIENT[case])).encode().replace(b"\\x07", b"\x07"))
+    (folder / "model.sdf").write_text('<sdf version="1.6"><model name="m"/></sdf>')
+    assert model_sdf_file(str(folder)) == str(folder / "model.sdf")
+
+
+def test_a_model_config_in_latin_1_is_read(tmp_path):
+    folder = tmp_path / "m"
+    folder.mkdir()
+    (folder / "model.config").write_bytes(b'<?xml version="1.0" encoding="UTF-8"?><model>'
+                                          b'<description>caf\xe9 & bar</description>'
+                                          b'<sdf version="1.6">model.sdf</sdf></model>')
+    (folder / "model.sdf").write_text('<sdf version="1.6"><model name="m"/></sdf>')
+    assert model_sdf_file(str(folder)) == str(folder / "model.sdf")
+
+
+def test_what_tinyxml_cannot_read_leaves_the_model_out_in_one_line(tmp_path):
+    """A mismatched end tag stops TinyXML too (TIXML_ERROR_READING_END_TAG)."""
+    folder = tmp_path / "m"
+    folder.mkdir()
+    (folder / "model.config").write_text('<model>\n<sdf version="1.6">model.sdf</model>\n')
+    with pytest.raises(ModelLeftOut) as err:
+        model_sdf_file(str(folder))
+    message = str(err.value)
+    assert "\n" not in message and "model.config:2: malformed XML: mismatched tag" in message
+    assert "Gazebo (TinyXML) cannot read it either: the model is left out" in message
 
 
 # --- Gazebo's order for relative file:// URIs and paths ------------------------------------------

@@ -18,7 +18,8 @@ from tutorial_turtlebot.sim.engine.world_bullet import build_world
 from tutorial_turtlebot.sim.files import material_scripts
 from tutorial_turtlebot.sim.files.material_scripts import WHITE, MaterialScripts
 from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
-from tutorial_turtlebot.sim.files.world_sdf import DEFAULT_RGBA, load_world
+from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.world_types import DEFAULT_RGBA
 
 import unit_paths
 from texture_fixtures import QUADRANTS, png_bytes, quadrant_texture

@@ -1,65 +1,23 @@
-"""The disk cache of converted meshes (mesh_cache, through mesh_file.load_mesh) and the parallel
-conversion of a world's meshes. conftest gives every test an empty cache under a ROS_HOME of its
-own. The meshes are bench/mesh_world.py's textured Collada models."""
+"""The disk cache of converted meshes (mesh_cache, through mesh_file.load_mesh). conftest gives
+every test an empty cache under a ROS_HOME of its own. The meshes are bench/mesh_world.py's
+textured Collada models; test_mesh_prefetch.py reads them ahead in parallel."""
 import os
 import shutil
-import sys
 
 import numpy as np
 import pytest
 
-from tutorial_turtlebot.errors import WorldError
 from tutorial_turtlebot.sim.files import mesh_cache, mesh_file
-from tutorial_turtlebot.sim.files.mesh_file import MeshError, load_mesh
-from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.mesh_file import load_mesh
+from tutorial_turtlebot.sim.files.obj_writer import write_obj_parts
 import unit_paths
 
+from mesh_cache_helpers import assert_same, dae, entries, mesh_world
 HERE = unit_paths.UNIT
-sys.path.insert(0, os.path.join(HERE, os.pardir, os.pardir, "bench"))
-import mesh_world  # noqa: E402
 
 CAP = os.path.join(HERE, os.pardir, "fixtures", "gazebo_models", "mesh_pillar", "meshes")
 
 
-@pytest.fixture
-def models(tmp_path):
-    """A folder of six generated model folders (0..5): gen_box_000, gen_drum_001, ..."""
-    folder = str(tmp_path / "models")
-    for number in range(6):
-        mesh_world.write_model(folder, number)
-    return folder
-
-
-def dae(models, number):
-    name = mesh_world.model_name(number)
-    return os.path.join(models, name, "meshes", name + ".dae")
-
-
-@pytest.fixture
-def reads(monkeypatch):
-    """The files mesh_file really reads (its reader, not the cache), in order."""
-    seen = []
-    real = mesh_file._read
-    monkeypatch.setattr(mesh_file, "_read", lambda path, *rest: seen.append(path)
-                        or real(path, *rest))
-    return seen
-
-
-def assert_same(a, b):
-    assert a.path == b.path
-    assert np.array_equal(a.vertices, b.vertices) and len(a.parts) == len(b.parts)
-    for p, q in zip(a.parts, b.parts):
-        assert np.array_equal(p.faces, q.faces) and p.rgba == q.rgba
-        for field in ("uvs", "texture", "texture_problem"):
-            x, y = getattr(p, field, None), getattr(q, field, None)
-            assert (x is None and y is None) or (
-                np.array_equal(x, y) if isinstance(x, np.ndarray) else x == y)
-
-
-def entries():
-    folder = mesh_cache.cache_dir()
-    return sorted(f for f in os.listdir(folder) if f.endswith(".npz")) if os.path.isdir(
-        folder) else []
 
 
 def test_the_cache_is_under_ros_home_else_the_xdg_cache():
@@ -136,11 +94,29 @@ def test_a_changed_converter_misses(models, reads, monkeypatch):
     assert len(reads) == 2
 
 
-def test_the_converter_digest_is_of_mesh_file_and_mesh_cache_sources(monkeypatch, tmp_path):
+def test_the_converter_digest_is_of_the_converters_sources(monkeypatch, tmp_path):
+    """Every module the reading of a mesh imports, of this package, is one of the sources
+    (a change in one of them is a new cache); a changed source changes the digest."""
+    import ast
+    here = os.path.dirname(mesh_cache.__file__)
+    todo, seen = ["mesh_file.py", "obj_writer.py"], set()
+    while todo:
+        name = todo.pop()
+        seen.add(name)
+        tree = ast.parse(open(os.path.join(here, name)).read())
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.level == 1:
+                for module in [node.module] if node.module else [a.name for a in node.names]:
+                    if module + ".py" not in seen and os.path.isfile(
+                            os.path.join(here, module + ".py")):
+                        todo.append(module + ".py")
+    assert seen - {"file_read.py", "limits.py"} == set(mesh_cache.CONVERTER_SOURCES)
     digest = mesh_cache.converter_digest()
-    changed = tmp_path / "mesh_file.py"
-    changed.write_text(open(mesh_file.__file__).read() + "\n# changed\n")
-    monkeypatch.setattr(mesh_file, "__file__", str(changed))
+    copy = tmp_path / "files"
+    shutil.copytree(here, str(copy))
+    with open(str(copy / "collada_reader.py"), "a") as f:
+        f.write("\n# changed\n")
+    monkeypatch.setattr(mesh_cache, "__file__", str(copy / "mesh_cache.py"))
     monkeypatch.setattr(mesh_cache, "_converter", None)
     assert mesh_cache.converter_digest() != digest
 
@@ -180,6 +156,18 @@ def test_an_unwritable_cache_loads_with_one_warning(models, reads, capsys, monke
     assert len(reads) == 3
 
 
+def test_the_warning_is_one_line_of_at_most_200_characters_to_the_sink(monkeypatch, capsys):
+    """The /gazebo node sends it to rospy's log (warning_sink); stderr is left alone then."""
+    said = []
+    monkeypatch.setattr(mesh_cache, "warning_sink", said.append)
+    mesh_cache.warn_once("a very long reason " * 40 + "\nover two lines")
+    mesh_cache.warn_once("a second one is not said")
+    [line] = said
+    assert len(line) <= 200 and "\n" not in line and line.startswith("mesh cache ")
+    assert line.endswith("...; meshes are read from their files")
+    assert capsys.readouterr().err == ""
+
+
 def test_the_size_bound_removes_the_least_recently_used(models, monkeypatch, tmp_path):
     home = os.environ["ROS_HOME"]
     monkeypatch.setenv("ROS_HOME", str(tmp_path / "elsewhere"))
@@ -217,98 +205,10 @@ def test_obj_parts_are_written_once_for_the_same_content(models, tmp_path):
 
     def write(m, folder):
         calls.append(folder)
-        return mesh_file.write_obj_parts(m, folder)
+        return write_obj_parts(m, folder)
     first = mesh_cache.obj_parts(mesh, str(tmp_path), write)
     second = mesh_cache.obj_parts(mesh, str(tmp_path), write)
     assert first == second and len(calls) == 1
     assert all(p.startswith(mesh_cache.cache_dir()) and os.path.isfile(p) for p, _ in first)
     other = mesh_cache.obj_parts(mesh_file._scaled(mesh, (2.0, 2.0, 2.0)), str(tmp_path), write)
     assert len(calls) == 2 and other[0][0] != first[0][0]
-
-
-def test_parallel_conversion_gives_the_serial_meshes(models, reads, monkeypatch, tmp_path):
-    paths = [dae(models, n) for n in range(6)]
-    serial = [load_mesh(p) for p in paths]
-    assert len(reads) == 6
-    monkeypatch.setenv("ROS_HOME", str(tmp_path / "parallel_home"))
-    mesh_file.cache_clear()
-    mesh_cache.forget_state()
-    assert mesh_cache.convert_ahead(paths, workers=2) == {}
-    here = len(reads) - 6                   # this process reads a share, a worker the rest
-    assert len(entries()) == 6 and 0 < here < 6
-    for path, mesh in zip(paths, serial):
-        assert_same(load_mesh(path), mesh)
-    assert len(reads) == 6 + here
-
-
-def _world(tmp_path, models, bad_body):
-    """A world of five generated models and one whose mesh file is ``bad_body``."""
-    bad = os.path.join(models, "bad", "meshes")
-    os.makedirs(bad)
-    name = "bad.dae" if isinstance(bad_body, bytes) else bad_body[0]
-    with open(os.path.join(bad, name), "wb") as f:
-        f.write(bad_body if isinstance(bad_body, bytes) else bad_body[1])
-    includes = "".join("<include><uri>model://%s</uri><pose>%d 3 0 0 0 0</pose></include>"
-                       % (mesh_world.model_name(n), n) for n in range(5))
-    world = tmp_path / "w.world"
-    world.write_text(
-        '<?xml version="1.0"?>\n<sdf version="1.6"><world name="w">%s\n<model name="bad">'
-        '<static>true</static><link name="l"><collision name="c"><geometry><mesh><uri>'
-        'file://%s</uri></mesh></geometry></collision></link></model></world></sdf>\n'
-        % (includes, os.path.join(bad, name)))
-    return str(world)
-
-
-def _serial_and_parallel(monkeypatch, tmp_path, world, models):
-    """(what loading ``world`` gives serially, the same with the pool, where a worker reads
-    every file): a World's warnings or a WorldError's line."""
-    monkeypatch.setenv("GAZEBO_MODEL_PATH", models)
-    monkeypatch.setattr(mesh_cache, "_shares", lambda paths, count: [[], list(paths)])
-    spawned = []
-    real = mesh_cache.convert_ahead
-    monkeypatch.setattr(mesh_cache, "convert_ahead", lambda paths, **kw: spawned.append(
-        real(paths, workers=2, **kw)) or spawned[-1])
-    out = []
-    for pool in (False, True):
-        monkeypatch.setenv("ROS_HOME", str(tmp_path / ("home_%s" % pool)))
-        monkeypatch.setattr(mesh_cache, "MIN_POOL_FILES", 1 if pool else 10 ** 6)
-        mesh_file.cache_clear()
-        mesh_cache.forget_state()
-        try:
-            out.append(load_world(world).warnings)
-        except WorldError as err:
-            out.append(str(err))
-    return out, spawned
-
-
-def test_a_file_that_fails_in_the_pool_warns_as_it_does_serially(models, monkeypatch,
-                                                                  tmp_path, reads):
-    world = _world(tmp_path, models, b"this is no XML, so no Collada")
-    (serial, parallel), spawned = _serial_and_parallel(monkeypatch, tmp_path, world, models)
-    assert len(serial) == 1 and "bad.dae" in serial[0] and "left out" in serial[0]
-    assert parallel == serial
-    assert list(spawned[-1]) == [os.path.join(models, "bad", "meshes", "bad.dae")]
-    # read by the serial run and by the worker, not again here after the worker's failure
-    assert reads.count(os.path.join(models, "bad", "meshes", "bad.dae")) == 1
-
-
-def test_a_file_refused_in_the_pool_is_refused_as_serially(models, monkeypatch, tmp_path):
-    world = _world(tmp_path, models, ("bad.stl", b"solid x\nfacet normal\nnot an stl\n"))
-    (serial, parallel), spawned = _serial_and_parallel(monkeypatch, tmp_path, world, models)
-    assert isinstance(serial, str) and "bad.stl" in serial
-    assert parallel == serial
-    assert spawned[-1]
-
-
-def test_a_world_of_few_meshes_starts_no_pool(models, monkeypatch):
-    monkeypatch.setattr("subprocess.Popen", None)      # would fail if called
-    assert mesh_cache.convert_ahead([dae(models, 0), dae(models, 1)]) == {}
-
-
-def test_the_pool_writes_the_obj_files_a_textured_visual_needs(models, monkeypatch):
-    paths = [dae(models, n) for n in range(4)]
-    mesh_cache.convert_ahead(paths, workers=2, scales={paths[0]: [[0.9, 0.9, 1.1]]})
-    monkeypatch.setattr(mesh_file, "write_obj_parts", None)    # would fail if called here
-    mesh = load_mesh(paths[0], (0.9, 0.9, 1.1))
-    parts = mesh_cache.visual_obj_parts(mesh, "/nonexistent", True)
-    assert parts and all(os.path.isfile(p) for p, _ in parts)

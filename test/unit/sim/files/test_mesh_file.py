@@ -1,4 +1,5 @@
-"""Mesh files read as Gazebo reads them (mesh_file): Collada, STL, OBJ. No ROS master.
+"""Mesh files read as Gazebo reads them (mesh_file, through its readers collada_reader and
+stl_obj_reader): Collada, STL, OBJ. No ROS master.
 
 The fixtures in test/fixtures/gazebo_models are small meshes written for these tests (see
 test/fixtures/make_mesh_fixtures.py); turtlebot3_world's two Collada files have the dimensions of
@@ -15,9 +16,8 @@ import pytest
 
 from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.sim.files import mesh_file
-from tutorial_turtlebot.sim.files.mesh_file import (Mesh, MeshError, MeshPart, MeshUnreadable,
-                                              cache_clear, convex_hull_vertices, load_mesh,
-                                              write_obj_parts)
+from tutorial_turtlebot.sim.files.mesh_file import cache_clear, load_mesh
+from tutorial_turtlebot.sim.files.mesh_types import MeshError, MeshUnreadable
 
 from unit_helpers import within
 import unit_paths
@@ -537,109 +537,31 @@ def test_an_unused_vertex_beyond_the_world_is_no_matter(tmp_path):
     assert np.allclose(load_mesh(path, (10.0, 10.0, 10.0)).bounds[1], (10.0, 10.0, 0.0))
 
 
-# --- hull and Wavefront files for pybullet -------------------------------------------------------
+# --- the modules -------------------------------------------------------------------------------
 
-def test_convex_hull_corners(tmp_path):
-    pillar = convex_hull_vertices(load_mesh(PILLAR))
-    assert sorted(map(tuple, np.round(pillar, 6).tolist())) == sorted(
-        (x, y, z) for x in (-0.2, 0.2) for y in (-0.2, 0.2) for z in (0.0, 1.0))
-    wall = convex_hull_vertices(load_mesh(WALL, (0.25, 0.25, 0.25)))
-    assert len(wall) == 12                    # the outer ring's corners, top and bottom
-    assert np.allclose(np.hypot(wall[:, 0], wall[:, 1]), 3.2996, atol=1e-4)
-    # A subdivided cube: the points in its faces and edges are no corners.
-    grid = np.array([(x, y, z) for x in (0, 1, 2) for y in (0, 1, 2) for z in (0, 1, 2)], float)
-    faces = np.arange(27).reshape(-1, 3)
-    cube = convex_hull_vertices(Mesh("cube", grid, (MeshPart(faces, None),)))
-    assert sorted(map(tuple, cube.tolist())) == sorted(
-        (x, y, z) for x in (0.0, 2.0) for y in (0.0, 2.0) for z in (0.0, 2.0))
-    # A flat mesh: the corners of its outline.
-    square = tmp_path / "flat.obj"
-    square.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nv 0.5 0 0\n"
-                      "f 1 6 5\nf 6 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n")
-    flat = convex_hull_vertices(load_mesh(str(square)))
-    assert len(flat) == 4 and np.allclose(flat[:, 2], 0.0)
+MESH_MODULES = ("mesh_types", "mesh_file", "mesh_lru", "mesh_side_files", "collada_reader",
+                "stl_obj_reader", "texture_images", "obj_writer", "convex_hull", "mesh_cache",
+                "mesh_prefetch")
 
 
-def obj_faces(path):
-    """(vertices, faces, per-face normals) of a Wavefront file written by write_obj_parts."""
-    vertices, normals, faces, face_normals = [], [], [], []
-    with open(path) as f:
-        for line in f:
-            words = line.split()
-            if words and words[0] == "v":
-                vertices.append([float(w) for w in words[1:]])
-            elif words and words[0] == "vn":
-                normals.append([float(w) for w in words[1:]])
-            elif words and words[0] == "f":
-                corners = [w.split("//") for w in words[1:]]
-                assert len(corners) == 3 and len({n for _, n in corners}) == 1
-                faces.append([int(v) - 1 for v, _ in corners])
-                face_normals.append(normals[int(corners[0][1]) - 1])
-    return np.array(vertices), np.array(faces), np.array(face_normals)
+def test_the_mesh_modules_import_each_other_at_the_top_without_a_circle():
+    """Each job its module (mesh_file.py split by job): every import of the package is at
+    the top of the module (none inside a function, where it would hide a circle), and no
+    module reaches itself through its imports."""
+    import ast
+    folder = os.path.dirname(mesh_file.__file__)
+    graph = {}
+    for name in MESH_MODULES:
+        tree = ast.parse(open(os.path.join(folder, name + ".py")).read())
+        graph[name] = set()
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.level:
+                modules = [node.module] if node.module else [a.name for a in node.names]
+                assert node in tree.body, "%s imports %s inside a function" % (name, modules)
+                graph[name].update(m for m in modules if node.level == 1
+                                   and os.path.isfile(os.path.join(folder, m + ".py")))
 
-
-def test_write_obj_parts_flat_normals_outward(tmp_path):
-    mesh = load_mesh(PILLAR, (1.0, 1.0, 2.0))
-    [(path, rgba)] = write_obj_parts(mesh, str(tmp_path))
-    assert rgba is None and os.path.dirname(path) == str(tmp_path)
-    vertices, faces, normals = obj_faces(path)
-    assert len(faces) == 12 and np.allclose(vertices.max(axis=0), (0.2, 0.2, 2.0))
-    centre = np.array([0.0, 0.0, 1.0])
-    outward = vertices[faces].mean(axis=1) - centre
-    assert np.all(np.einsum("ij,ij->i", normals, outward) > 0)
-    assert np.allclose(np.linalg.norm(normals, axis=1), 1.0)
-
-
-def test_write_obj_parts_load_in_pybullet(tmp_path):
-    pybullet = pytest.importorskip("pybullet")
-    mesh = load_mesh(CAP)
-    written = write_obj_parts(mesh, str(tmp_path))
-    assert sorted(rgba for _, rgba in written) == sorted(p.rgba for p in mesh.parts)
-    assert len({path for path, _ in written}) == 2
-    cid = pybullet.connect(pybullet.DIRECT)
-    try:
-        boxes = []
-        for path, rgba in written:
-            visual = pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
-                                                rgbaColor=rgba, physicsClientId=cid)
-            collision = pybullet.createCollisionShape(pybullet.GEOM_MESH, fileName=path,
-                                                      physicsClientId=cid)
-            assert visual >= 0 and collision >= 0
-            body = pybullet.createMultiBody(0, collision, visual, physicsClientId=cid)
-            boxes.append(np.array(pybullet.getAABB(body, physicsClientId=cid)))
-        low = np.min([b[0] for b in boxes], axis=0)
-        high = np.max([b[1] for b in boxes], axis=0)
-        assert np.allclose(low, (-0.25, -0.25, 0.0), atol=0.01)   # Bullet's margin aside
-        assert np.allclose(high, (0.25, 0.25, 0.1), atol=0.01)
-        # Seen from above, TinyRenderer draws the top lit in its red: the normals face out
-        # (a top drawn with its normal down comes out about a third darker).
-        view = pybullet.computeViewMatrix((0, 0, 2), (0, 0, 0), (0, 1, 0))
-        projection = pybullet.computeProjectionMatrixFOV(30, 1, 0.1, 10)
-        width, height, rgb, _, _ = pybullet.getCameraImage(
-            32, 32, view, projection, renderer=pybullet.ER_TINY_RENDERER, physicsClientId=cid)
-        image = np.reshape(np.asarray(rgb, dtype=np.uint8), (height, width, 4))
-        red, green, blue = image[16, 16, :3]
-        assert red > 170 and green < 40 and blue < 40, (red, green, blue)
-    finally:
-        pybullet.disconnect(cid)
-
-
-def test_the_meshes_read_are_kept_up_to_a_size_least_recently_used_first(tmp_path, monkeypatch):
-    from tutorial_turtlebot.sim.files import mesh_file
-    mesh_file.cache_clear()
-    paths = []
-    for k in range(3):
-        path = tmp_path / ("t%d.obj" % k)
-        path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
-                        % (k + 1))
-        paths.append(str(path))
-    one = mesh_file.load_mesh(paths[0])
-    size = mesh_file._cached_bytes          # one file: its mesh, and the same at scale 1
-    monkeypatch.setattr(mesh_file, "MAX_CACHED_BYTES", 2 * size)
-    assert mesh_file.load_mesh(paths[0]) is one               # kept
-    mesh_file.load_mesh(paths[1])
-    assert mesh_file._cached_bytes <= 2 * size
-    assert mesh_file.load_mesh(paths[1]) is mesh_file.load_mesh(paths[1])
-    mesh_file.load_mesh(paths[2])
-    assert mesh_file.load_mesh(paths[0]) is not one           # forgotten, read again
-    mesh_file.cache_clear()
+    def reaches(start, goal, seen=()):
+        return any(m == goal or (m not in seen and m in graph
+                                 and reaches(m, goal, seen + (m,))) for m in graph[start])
+    assert [m for m in MESH_MODULES if reaches(m, m)] == []

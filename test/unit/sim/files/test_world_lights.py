@@ -5,7 +5,8 @@ import pytest
 
 from tutorial_turtlebot.sim.files.mesh_file import cache_clear
 from tutorial_turtlebot.sim.files.world_lights import Light, light_of, light_pose, lights_by_name
-from tutorial_turtlebot.sim.files.world_sdf import load_world, resolve_world
+from tutorial_turtlebot.sim.files.world_catalogue import resolve_world
+from tutorial_turtlebot.sim.files.world_sdf import load_world
 from tutorial_turtlebot.sim.files.xml_reader import parse
 from tutorial_turtlebot.sim.kinematics import IDENTITY, pose_from_xyz_rpy
 

@@ -11,12 +11,13 @@ import pytest
 
 from tutorial_turtlebot.errors import WorldError
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.world.spawn_check import check_spawn, find_obstacle
+from tutorial_turtlebot.sim.world.spawn_check import find_obstacle
 from tutorial_turtlebot.sim.engine.world_bullet import WORLD_COLLISION_GROUP, build_world
 from tutorial_turtlebot.sim.world.world_control import RequestError
 
 from unit_helpers import ROBOT
-from tutorial_turtlebot.sim.files.world_sdf import DEFAULT_RGBA, load_world
+from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.world_types import DEFAULT_RGBA
 import unit_paths
 
 FIXTURES = unit_paths.FIXTURES
@@ -68,15 +69,20 @@ def test_its_scan_matches_the_built_in_primitive_copy_ray_by_ray():
     assert np.median(error) < 0.002 and error.max() < 0.03
 
 
-@pytest.mark.parametrize("x, y, inside", [
-    (1.8, 2.7, "left_hand"),      # in a hexagon mesh
-    (0.0, 2.7, "body"),           # in the wall ring's mesh
-    (3.0, 0.0, "head"),
+@pytest.mark.parametrize("x, y", [
+    (0.0, 2.58),                  # across the wall ring's inner face
+    (1.8, 2.7),                   # in a hexagon, and across the ring's inner face
 ])
-def test_a_spawn_inside_a_mesh_is_refused(x, y, inside):
-    world = load_world(MESH_WORLD)
-    with pytest.raises(WorldError, match="is inside %s" % (SYMBOL + inside)):
-        check_spawn(world, x, y, 0.105)
+def test_a_spawn_in_a_mesh_is_taken_with_one_warning(x, y):
+    """No refusal (spawn_check): the robot's body cuts the wall ring's triangles, and one
+    warning names the model and the ring's top (1.27 m high, from z -0.3) as z_pos."""
+    sim = Simulation(SimConfig(world=MESH_WORLD, x=x, y=y))
+    try:
+        assert sim.spawn[2] == 0.0            # the meshes' bottoms are no floor above z 0
+        (warning,) = sim.robot.warnings
+        assert " overlaps turtlebot3_world by " in warning and "z_pos 0.970" in warning
+    finally:
+        sim.close()
 
 
 @pytest.mark.parametrize("x, y", [SPAWN, (0.0, 3.2), (0.55, 0.55)])

@@ -8,8 +8,9 @@ import subprocess
 import pytest
 
 from tutorial_turtlebot.errors import WorldError
-from tutorial_turtlebot.sim.files.world_sdf import (DEFAULT_RGBA, WORLD_DIR, WORLDS, load_world,
-                                          resolve_world)
+from tutorial_turtlebot.sim.files.world_catalogue import WORLD_DIR, WORLDS, resolve_world
+from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.world_types import DEFAULT_RGBA
 
 from unit_helpers import world_fault
 
@@ -253,11 +254,11 @@ def test_malformed_xml_names_file_and_line(tmp_path):
     assert ":4:" in message and "malformed XML" in message and "mismatched tag" in message
 
 
-def test_an_unsupported_geometry_names_element_file_and_line(tmp_path):
-    # (a missing mesh is a warning: test_world_tolerance.py)
-    message = world_fault(write(tmp_path, model("<heightmap><uri>h.png</uri></heightmap>")))
-    assert ":4:" in message and "<heightmap>" in message and "m::l::c" in message
-    assert "box, cylinder, sphere, plane, polyline, mesh" in message
+def test_a_geometry_gazebo_11_does_not_know_names_element_file_and_line(tmp_path):
+    # (a missing mesh is a warning: test_world_tolerance.py; a heightmap: test_world_elements.py)
+    message = world_fault(write(tmp_path, model("<capsule><radius>1</radius></capsule>")))
+    assert ":4:" in message and "<capsule>" in message and "m::l::c" in message
+    assert "box, cylinder, sphere, plane, polyline, mesh, heightmap, image" in message
 
 
 @pytest.mark.parametrize("geometry, element", [
@@ -285,12 +286,11 @@ def test_self_crossing_polyline_is_refused(tmp_path):
 
 
 @pytest.mark.parametrize("body, words", [
-    ('<road name="r"><width>1</width></road>', "<road>"),
-    ('<model name="m"><pose relative_to="x">0 0 0 0 0 0</pose></model>', "relative_to"),
+    ('<model name="m"><pose relative_to="x">0 0 0 0 0 0</pose></model>', "relative_to='x'"),
     ('<model name="m"><link name="l"><collision name="c"><geometry><box/></geometry></collision>'
      '<visual name="c"><geometry><sphere/></geometry></visual></link></model>', "m::l::c"),
 ])
-def test_unsupported_content_is_refused(tmp_path, body, words):
+def test_garbage_content_is_refused(tmp_path, body, words):
     assert words in world_fault(write(tmp_path, body))
 
 
@@ -319,3 +319,15 @@ def test_paths_resolve_with_and_without_spawn(tmp_path):
     assert spawn == (-2.0, -0.5, 0.0)
     mine = write(tmp_path, model("<sphere/>"), name="mine.sdf")
     assert resolve_world(mine) == (mine, None)
+
+
+def test_a_world_file_named_model_loads_as_gazebo_loads_it(tmp_path):
+    """Published worlds are named room.model and started with `gazebo room.model`."""
+    from tutorial_turtlebot.sim.files.world_catalogue import resolve_world
+
+    source = resolve_world("turtlebot3_world")[0]
+    path = tmp_path / "room.model"
+    path.write_text(open(source).read())
+    resolved, spawn = resolve_world(str(path))
+    assert resolved == str(path) and spawn is None
+    assert load_world(resolved).model_specs

@@ -7,7 +7,8 @@ import pytest
 
 from tutorial_turtlebot.sim.files.mesh_file import cache_clear
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.files.world_sdf import Inertial, load_model_xml, load_world
+from tutorial_turtlebot.sim.files.world_sdf import load_model_xml, load_world
+from tutorial_turtlebot.sim.files.world_types import Inertial
 
 from unit_helpers import world_fault
 import unit_paths
@@ -114,11 +115,12 @@ def test_a_missing_mesh_is_one_warning_and_the_link_loads_without_it(tmp_path):
     world = load_world(world_file(tmp_path, body))
     assert world.models == ("m", "other")
     assert [s.name for s in world.model_shapes("m")] == ["m::l::b"]   # the box stays
-    [message] = world.warnings           # the same file twice: one line
+    [message, searched] = world.warnings   # the same file twice: one line; the folders once
     assert "\n" not in message and message.startswith(str(tmp_path / "test.world") + ":4: ")
-    assert "m::l::c left out: model://mailbox/meshes/mailbox.dae not found: searched " \
-           "GAZEBO_MODEL_PATH (%s)" % (tmp_path / "models") in message
-    assert "download it and add its folder to GAZEBO_MODEL_PATH" in message
+    assert message.endswith("m::l::c left out: model://mailbox/meshes/mailbox.dae not found")
+    assert len(message) <= 200
+    assert searched.startswith("model:// searched GAZEBO_MODEL_PATH (%s)" % (tmp_path / "models"))
+    assert "download it and add its folder to GAZEBO_MODEL_PATH" in searched
 
 
 def test_a_mesh_named_in_another_letter_case_is_named_as_such(tmp_path):
@@ -126,10 +128,11 @@ def test_a_mesh_named_in_another_letter_case_is_named_as_such(tmp_path):
     (tmp_path / "meshes" / "mailbox.dae").write_text("<COLLADA/>")
     world = load_world(world_file(tmp_path, model(link(geometry=mesh("meshes/Mailbox.DAE")))))
     assert world.model_shapes("m") == ()
-    [message] = world.warnings
-    assert "meshes/Mailbox.DAE not found" in message
-    assert ("%s exists, whose name differs only in letter case"
+    [message, searched] = world.warnings
+    assert "meshes/Mailbox.DAE not found" in message and len(message) <= 200
+    assert ("%s exists (its name differs in letter case)"
             % (tmp_path / "meshes" / "mailbox.dae")) in message
+    assert searched.startswith("relative paths searched ")
 
 
 @pytest.mark.parametrize("content", ["not xml at all", "<COLLADA><asset>\n<unit meter=",
@@ -151,7 +154,8 @@ def test_a_spawned_models_missing_mesh_is_a_warning_of_its_world(tmp_path):
            % link(geometry=mesh("model://cafe_table/meshes/table.dae")))
     world = load_model_xml(sdf, "model_xml", "table")
     assert world.models == ("table",) and world.model_shapes("table") == ()
-    assert len(world.warnings) == 1 and "model://cafe_table" in world.warnings[0]
+    [missing, searched] = world.warnings
+    assert "model://cafe_table" in missing and searched.startswith("model:// searched ")
 
 
 def test_the_world_runs_without_what_was_left_out(tmp_path):
@@ -165,7 +169,7 @@ def test_the_world_runs_without_what_was_left_out(tmp_path):
             + model(link(), name="wall", pose="-2 0 0.5 0 0 0"))
     sim = Simulation(SimConfig(world=world_file(tmp_path, body), spawn_robot=False))
     try:
-        assert len(sim.world.warnings) == 2
+        assert len(sim.world.warnings) == 3       # the include, its search, the Collada file
         assert sim.world.models == ("ground_plane", "crate", "wall")
         for _ in range(50):
             sim.step()
@@ -226,10 +230,13 @@ def test_the_fixture_worlds_load_unmodified(monkeypatch, name, models, left_out)
     monkeypatch.setenv("GAZEBO_MODEL_PATH", os.path.join(FIXTURES, "gazebo_models"))
     world = load_world(os.path.join(FIXTURES, "worlds", name + ".world"))
     assert world.models == models
-    assert len(world.warnings) == len(left_out)     # one line for each thing left out
-    for warning, start in zip(world.warnings, left_out):
-        assert start in warning and "\n" not in warning
-        assert "github.com/osrf/gazebo_models" in warning      # where to get them
+    searched = [w for w in world.warnings if w.startswith("model:// searched ")]
+    left = [w for w in world.warnings if w not in searched]
+    assert len(left) == len(left_out)     # one line for each thing left out
+    for warning, start in zip(left, left_out):
+        assert start in warning and "\n" not in warning and len(warning) <= 200
+    assert len(searched) == (1 if left_out else 0)                # the folders searched once
+    assert all("github.com/osrf/gazebo_models" in s for s in searched)   # where to get them
     if name != "house_like":   # the saved state moved the barrier 1 m ahead of the spawn
         barrier = "barrier" if name == "autorace_like" else "barrier_1"
         assert world.model(barrier).pose[:2] == (1.0, -1.5)

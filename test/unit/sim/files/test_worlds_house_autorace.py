@@ -1,5 +1,6 @@
-"""turtlebot3_house and turtlebot3_autorace (doc/turtlebot3.md 4.3, 4.5), the spawn check
-(spawn_check) and the turtlebot3_gazebo launch names (doc/turtlebot3.md 4.1). No ROS master.
+"""turtlebot3_house and turtlebot3_autorace (doc/turtlebot3.md 4.3, 4.5), spawns among their
+obstacles (spawn_check) and the turtlebot3_gazebo launch names (doc/turtlebot3.md 4.1). No ROS
+master.
 
 Every file in worlds/ passing `ign sdf -k` and loading is test_world_sdf.py's job (it globs them).
 """
@@ -14,13 +15,13 @@ import pybullet
 import pytest
 import yaml
 
-from tutorial_turtlebot.errors import WorldError
-from tutorial_turtlebot.sim.world.spawn_check import (FLOOR_CLEARANCE, check_spawn, find_obstacle,
-                                            footprint_radius)
+from tutorial_turtlebot.sim.world.spawn_check import (FLOOR_CLEARANCE, find_obstacle,
+                                                      footprint_radius)
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
 from tutorial_turtlebot.sim.engine.world_bullet import WORLD_COLLISION_GROUP, build_world
-from tutorial_turtlebot.sim.files.world_sdf import WORLDS, load_world, resolve_world
+from tutorial_turtlebot.sim.files.world_catalogue import WORLDS, resolve_world
+from tutorial_turtlebot.sim.files.world_sdf import load_world
 import unit_paths
 
 ROOT = unit_paths.ROOT
@@ -428,56 +429,62 @@ def test_robot_stands_on_the_course_at_the_spawn():
     assert pz == pytest.approx(0.0, abs=0.005)
 
 
-# --- spawn check --------------------------------------------------------------------------------
+# --- a spawn among obstacles: find_obstacle's plan measure, and no refusal ---------------------
 
 @pytest.fixture(scope="module")
 def tb3_world():
     return load_world(resolve_world("turtlebot3_world")[0])
 
 
-def test_spawn_inside_a_pillar_is_refused(tb3_world):
-    with pytest.raises(WorldError) as err:
-        check_spawn(tb3_world, -1.1, 0.0, 0.105)
-    message = str(err.value)
-    assert message.startswith("spawn (-1.1, 0.0) is inside ros_symbol::symbol::one_two")
-    assert "turtlebot3_world.world" in message and "\n" not in message
+def inside(world, x, y, radius):
+    """The name of the shape whose inside (x, y) is in, by find_obstacle's plan measure."""
+    hit = find_obstacle(world, x, y, radius)
+    assert hit is not None and hit[1] <= 0.0, hit
+    return hit[0].name
 
 
-def test_spawn_overlapping_a_pillar_is_refused(tb3_world):
+def test_a_spawn_inside_a_pillar_is_taken_with_one_warning(tb3_world):
+    """Gazebo refuses no spawn for overlap (spawn_check): the robot is spawned, and one line
+    names the model and a z_pos."""
+    assert inside(tb3_world, -1.1, 0.0, 0.105) == "ros_symbol::symbol::one_two"
+    sim = Simulation(SimConfig(world="turtlebot3_world", x=-1.1, y=0.0))
+    try:
+        (warning,) = sim.robot.warnings
+        assert warning.startswith("at (-1.1, 0.0, 0.0) it overlaps ros_symbol by ")
+        assert "z_pos" in warning and "\n" not in warning
+    finally:
+        sim.close()
+
+
+def test_a_spawn_near_a_pillar_is_measured_in_plan(tb3_world):
     # centre 0.2 m from the pillar's axis: 0.05 m from its surface
-    with pytest.raises(WorldError, match=r"spawn \(-1.1, 0.2\) is 0.050 m from "
-                                         r"ros_symbol::symbol::one_two .*radius 0.105 m"):
-        check_spawn(tb3_world, -1.1, 0.2, 0.105)
-    check_spawn(tb3_world, -1.1, 0.2, 0.04)                      # a thinner robot fits
     shape, distance = find_obstacle(tb3_world, -1.1, 0.2, 0.105)
     assert shape.name == "ros_symbol::symbol::one_two" and distance == pytest.approx(0.05)
+    assert find_obstacle(tb3_world, -1.1, 0.2, 0.04) is None     # a thinner robot fits
 
 
 @pytest.mark.parametrize("x, y, obstacle", [
     (3.0, 0.0, "ros_symbol::symbol::head"),                     # a polyline (hexagonal prism)
     (-2.7, -0.5, "ros_symbol::symbol::body_sw"),                # a turned box
 ])
-def test_spawn_inside_arena_pieces_is_refused(tb3_world, x, y, obstacle):
-    with pytest.raises(WorldError, match="is inside " + obstacle):
-        check_spawn(tb3_world, x, y, 0.105)
+def test_inside_arena_pieces(tb3_world, x, y, obstacle):
+    assert inside(tb3_world, x, y, 0.105) == obstacle
 
 
 @pytest.mark.parametrize("name", sorted(WORLDS))
-def test_the_real_spawns_are_accepted(name):
+def test_the_real_spawns_are_clear(name):
     world = load_world(resolve_world(name)[0])
     x, y, _ = WORLDS[name].spawn
-    check_spawn(world, x, y, LARGEST_FOOTPRINT)
+    assert find_obstacle(world, x, y, LARGEST_FOOTPRINT) is None
 
 
 def test_house_and_autorace_obstacles(house, autorace):
-    with pytest.raises(WorldError, match=r"inside turtlebot3_house::Wall_88::wall"):
-        check_spawn(house, -5.15, -1.0, 0.105)
-    with pytest.raises(WorldError, match=r"inside tunnel::link::obstacle_0"):
-        check_spawn(autorace, -0.618, -1.339, 0.105)
+    assert inside(house, -5.15, -1.0, 0.105) == "turtlebot3_house::Wall_88::wall"
+    assert inside(autorace, -0.618, -1.339, 0.105) == "tunnel::link::obstacle_0"
     # under the table (its top is at 1.0 m) and between its legs: clear
-    check_spawn(house, -2.657, 2.424, 0.105)
+    assert find_obstacle(house, -2.657, 2.424, 0.105) is None
     # on a lane line: the lines are paint, not obstacles
-    check_spawn(autorace, 0.245, AUTORACE_SPAWN[1] - LANE_HALF, 0.105)
+    assert find_obstacle(autorace, 0.245, AUTORACE_SPAWN[1] - LANE_HALF, 0.105) is None
 
 
 def test_tilted_and_round_shapes(tmp_path):
@@ -499,14 +506,12 @@ def test_tilted_and_round_shapes(tmp_path):
         '</link></model></world></sdf>')
     world = load_world(str(path))
     assert 0.005 < FLOOR_CLEARANCE
-    with pytest.raises(WorldError, match="inside m::l::plank"):
-        check_spawn(world, 0.5, 0.0, 0.1)
+    assert inside(world, 0.5, 0.0, 0.1) == "m::l::plank"
     shape, distance = find_obstacle(world, 0.5, 0.3, 0.3)
     assert shape.name == "m::l::plank" and distance == pytest.approx(0.1, abs=0.01)
     assert find_obstacle(world, 0.5, 0.6, 0.3) is None
     assert find_obstacle(world, 5.0, 0.0, 0.1) is None
-    with pytest.raises(WorldError, match="inside m::l::rock"):
-        check_spawn(world, -5.1, 0.0, 0.05)
+    assert inside(world, -5.1, 0.0, 0.05) == "m::l::rock"
     assert find_obstacle(world, 0.0, 5.0, 0.1) is None
 
 

@@ -115,3 +115,13 @@ def test_a_spawned_robot_is_parsed_once(control, parses):
 def test_a_spawned_sdf_is_parsed_once(control, parses):
     control.spawn("box", BOX_SDF, at(2.0, 2.0, 0.5))
     assert parses == ["model_xml"]
+
+
+@pytest.mark.parametrize("data", ["\n\n<?xml version='1.0'?>\n<a>\n<b/></a>",
+                                  b"  \r\n\n<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<a>\n<b/></a>"])
+def test_blank_lines_before_the_declaration_are_read_and_lines_keep_their_numbers(data):
+    """Published worlds begin with blank lines before <?xml ...?>: Gazebo's TinyXML reads
+    them (expat alone refuses them)."""
+    root = xml_reader.parse(data, "blank.world")
+    assert root.tag == "a" and root.line == 4
+    assert root.find("b").line == 5

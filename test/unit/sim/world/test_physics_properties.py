@@ -36,3 +36,20 @@ def test_refused(bad):
 def test_bullet_counterparts():
     params = bullet_parameters(OdeConfig(sor_pgs_iters=50, erp=0.3, cfm=1e-5))
     assert params == {"numSolverIterations": 50, "erp": 0.3, "contactERP": 0.3, "globalCFM": 1e-5}
+
+
+def test_a_rate_whose_product_with_the_step_underflows_is_too_slow_not_as_fast_as_possible():
+    subnormal = PhysicsProperties(0.0025, 5e-324)
+    assert subnormal.real_time_factor == 0.0               # the product underflows
+    with pytest.raises(ValueError, match="below"):
+        validate(subnormal)
+    validate(PhysicsProperties(0.0025, 0.0))               # 0 is still "as fast as possible"
+
+
+def test_cfm_is_held_to_what_keeps_bodies_on_the_floor():
+    """Past 0.1 Bullet's constraint force mixing lets a Waffle sink (6 cm at 1) and from 2 every
+    body falls through the world: refused, one line."""
+    validate(updated(PhysicsProperties(), cfm=0.1))
+    for cfm in (0.11, 1.0, 1e6):
+        with pytest.raises(ValueError, match=r"ode_config.cfm .* is outside \[0, 0.1\]"):
+            validate(updated(PhysicsProperties(), cfm=cfm))

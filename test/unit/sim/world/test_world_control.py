@@ -259,3 +259,29 @@ def test_parked_bodies_are_bounded_and_the_newest_reused(empty):
     assert pybullet.getNumBodies(physicsClientId=cid) == before + MAX_PARKED_BODIES
     wc.spawn("first", box_sdf(size=0.1), at(-3.0, 3.0, 0.5))            # removed long ago
     assert pybullet.getNumBodies(physicsClientId=cid) == before + MAX_PARKED_BODIES + 1
+
+
+@pytest.mark.parametrize("bad", [(math.nan, 0, 0, 1), (0, 0, 0, math.inf), (0, -math.inf, 0, 1)])
+def test_a_nan_or_infinite_orientation_is_refused_in_every_field(empty, bad):
+    """Every request field that is an orientation: set_model_state and set_link_state poses,
+    a spawn's pose, set_link_properties' com orientation (otherwise ignored, as Gazebo
+    ignores it), set_light_properties' pose: one line, nothing changed."""
+    sim, wc = empty
+    wc.spawn("box", CUBE, at(2, 2, 0.075))
+    before = wc.get_model_state("box")[0]
+    zero = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    link = wc.get_link_properties("box::link")
+    light = next(iter(wc.lights()))
+    for call in (lambda: wc.set_model_state("box", ((2, 2, 0.075), bad), zero),
+                 lambda: wc.set_link_state("box::link", ((2, 2, 0.075), bad), zero),
+                 lambda: wc.spawn("other", CUBE, ((1, 1, 0.1), bad)),
+                 lambda: wc.set_link_properties("box::link", link.com, True, 2.0, link.inertia,
+                                                com_orientation=bad),
+                 lambda: wc.set_light(light, True, (1, 1, 1, 1), (0.1, 0.1, 0.1, 1),
+                                      (0.9, 0.01, 0.001), (0, 0, -1), ((0, 0, 10), bad))):
+        with pytest.raises(RequestError) as caught:
+            call()
+        assert "\n" not in str(caught.value)
+    assert "other" not in sim.models
+    assert wc.get_model_state("box")[0] == before
+    assert wc.get_link_properties("box::link").mass == pytest.approx(2.0)
