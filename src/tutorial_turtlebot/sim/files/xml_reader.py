@@ -103,14 +103,14 @@ def parse(data: Union[str, bytes], source: str, error: Type[UserError] = UserErr
     return builder.close()
 
 
-_LATE_DECLARATION = {str: re.compile(r"\A(\s+)(<\?xml[^>\n]*\?>)"),
-                     bytes: re.compile(rb"\A(\s+)(<\?xml[^>\n]*\?>)")}
+_LATE_DECLARATION = {str: re.compile(r"\A((?:\s|<!--.*?-->)+)(<\?xml[^>\n]*\?>)", re.S),
+                     bytes: re.compile(rb"\A((?:\s|<!--.*?-->)+)(<\?xml[^>\n]*\?>)", re.S)}
 
 
 def _declaration_first(data: Union[str, bytes]) -> Union[str, bytes]:
-    """``data`` with an XML declaration that white space precedes put first (the white space
-    after it: every line keeps its number). Gazebo's TinyXML reads such files (published worlds
-    begin with blank lines); expat refuses them."""
+    """``data`` with an XML declaration that white space or comments precede put first (they
+    follow it: every line keeps its number). Gazebo's TinyXML reads such files (published worlds
+    begin with blank lines, or a comment); expat refuses them."""
     return _LATE_DECLARATION[type(data)].sub(lambda m: m.group(2) + m.group(1), data, count=1)
 
 
