@@ -13,14 +13,15 @@ alike gives. It prints how long the cluster took to start and the stepping rate.
 """
 import importlib
 import os
-import subprocess
 import sys
 import time
 
 import numpy as np
 import pytest
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from extras import ensure_extra  # noqa: E402
+
 STEPS = 20              # environment steps per env per batch
 ENVS_PER_ACTOR = 2
 
@@ -32,19 +33,8 @@ def say(capsys, text):
 
 
 def ensure_ray():
-    """Ray, installed first if missing (imported by name: an extra, not in package.xml)."""
-    try:
-        return importlib.import_module("ray")
-    except ImportError:
-        pass
-    done = subprocess.run(["bash", os.path.join(ROOT, "tools", "install_extra.sh"), "ray"],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                          timeout=900)
-    if done.returncode == 3:
-        pytest.skip("PyPI is unreachable, so the ray extra could not be installed")
-    assert done.returncode == 0, done.stdout
-    importlib.invalidate_caches()
-    return importlib.import_module("ray")
+    """Ray, installed first if missing."""
+    return ensure_extra("ray", "ray", timeout=900)
 
 
 @pytest.fixture(scope="module")

@@ -18,7 +18,8 @@ import warnings
 
 import pytest
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from extras import ensure_extra  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -34,14 +35,7 @@ def sb3():
     if cpu_build.returncode != 0:
         pytest.skip("pip finds no CPU build of torch 2.13.0 here (only PyPI's CUDA build, "
                     "several GB): the train extra is not installed for a test")
-    done = subprocess.run(["bash", os.path.join(ROOT, "tools", "install_extra.sh"), "train"],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                          timeout=1800)
-    if done.returncode == 3:
-        pytest.skip("PyPI is unreachable, so the train extra could not be installed")
-    assert done.returncode == 0, done.stdout
-    importlib.invalidate_caches()
-    return importlib.import_module("stable_baselines3")
+    return ensure_extra("train", "stable_baselines3", timeout=1800)
 
 
 def env_ids():
