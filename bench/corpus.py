@@ -292,7 +292,7 @@ def main(argv=None):
         sys.exit("make corpus: the corpus is not in %s (or is incomplete): make it with "
                  "python3 tools/corpus/fetch_corpus.py" % root)
     print("make corpus: %d worlds from %s, %s, %d cores" % (len(worlds), root,
-                                                         socket.gethostname(), os.cpu_count()),
+                                                            socket.gethostname(), os.cpu_count()),
           flush=True)
     images = {} if not args.images else {"CORPUS_IMAGES": os.path.join(args.images, "reference")}
     reference = run_reference(args.limit, images)
@@ -313,7 +313,7 @@ def main(argv=None):
         with open(json_path, "w", encoding="utf-8") as f:
             json.dump({"reference": reference, "worlds": results}, f, indent=1)
     header = "make corpus, %s, %s (%d cores)" % (time.strftime("%Y-%m-%d"),
-                                                   socket.gethostname(), os.cpu_count())
+                                                 socket.gethostname(), os.cpu_count())
     shown = [dict(row, reason=row["reason"].replace(root.rstrip("/") + "/", ""))
              if row.get("reason") else row for row in results]   # paths within the corpus
     report = format_report(shown, reference, header)

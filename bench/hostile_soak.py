@@ -22,12 +22,12 @@ then again), a client subscribed to /scan whose rate is measured, and the /clock
 notes the longest wall time between two messages. The sim's threads are counted at the start
 and the end.
 
-It prints one line a round, then ``RESULT clock_gap_s rss_start_mb rss_end_mb cpu_start
-cpu_end alive rss_idle_mb rounds threads_start threads_end scan_hz``. The start is after a first round (the mesh readers are
-imported then, about 40 MB, and the caches filled); rss_idle_mb is before any request. CPU per
-sim second: the sim's CPU seconds over 20 quiet wall seconds at the start and at the end,
-divided by the sim seconds run meanwhile. make bench's ``hostile``
-group runs it (not a default group: it takes --minutes plus about a minute).
+It prints one line a round, then ``RESULT clock_gap_s rss_start_mb rss_end_mb cpu_start cpu_end
+alive rss_idle_mb rounds threads_start threads_end scan_hz``. The start is after a first round
+(the mesh readers are imported then, about 40 MB, and the caches filled); rss_idle_mb is before
+any request. CPU per sim second: the sim's CPU seconds over 20 quiet wall seconds at the start
+and at the end, divided by the sim seconds run meanwhile. make bench's ``hostile`` group runs it
+(not a default group: it takes --minutes plus about a minute).
 Run from a shell where ``source catkin_ws/devel/setup.bash`` was done.
 """
 import argparse

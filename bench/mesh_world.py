@@ -72,7 +72,10 @@ class _Builder:
         hx, hy, hz = (s / 2 for s in size)
         x0, x1, y0, y1, z0, z1 = cx - hx, cx + hx, cy - hy, cy + hy, cz - hz, cz + hz
         X, Y, Z = (2 * hx, 0, 0), (0, 2 * hy, 0), (0, 0, 2 * hz)
-        neg = lambda v: tuple(-c for c in v)   # noqa: E731
+
+        def neg(v):
+            return tuple(-c for c in v)
+
         self.quad_grid((x0, y0, z1), X, Y, n)          # top
         self.quad_grid((x0, y1, z0), X, neg(Y), n)     # bottom
         self.quad_grid((x1, y0, z0), Y, Z, n)          # +x
@@ -122,15 +125,18 @@ class _Builder:
   <asset><unit name="meter" meter="1"/><up_axis>Z_UP</up_axis></asset>
   <library_images><image id="skin-image"><init_from>%(image)s</init_from></image></library_images>
   <library_effects><effect id="skin-effect"><profile_COMMON>
-    <newparam sid="skin-surface"><surface type="2D"><init_from>skin-image</init_from></surface></newparam>
+    <newparam sid="skin-surface"><surface type="2D">\
+<init_from>skin-image</init_from></surface></newparam>
     <newparam sid="skin-sampler"><sampler2D><source>skin-surface</source></sampler2D></newparam>
     <technique sid="common"><lambert>
       <diffuse><texture texture="skin-sampler" texcoord="UVMap"/></diffuse>
     </lambert></technique>
   </profile_COMMON></effect></library_effects>
-  <library_materials><material id="skin" name="skin"><instance_effect url="#skin-effect"/></material></library_materials>
+  <library_materials><material id="skin" name="skin">\
+<instance_effect url="#skin-effect"/></material></library_materials>
   <library_geometries><geometry id="shape"><mesh>
-    <source id="shape-positions"><float_array id="shape-positions-array" count="%(n3)d">%(pos)s</float_array>
+    <source id="shape-positions">\
+<float_array id="shape-positions-array" count="%(n3)d">%(pos)s</float_array>
       <technique_common><accessor source="#shape-positions-array" count="%(n)d" stride="3">
         <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
       </accessor></technique_common></source>

@@ -95,6 +95,7 @@ import statistics
 import subprocess
 import sys
 import time
+from typing import Any, Callable, NamedTuple, Tuple
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 FIXTURES = os.path.join(HERE, os.pardir, "test", "fixtures")
@@ -654,7 +655,7 @@ def render_times(frames=10):
     """Median ms per rendered frame at each RESOLUTIONS size, with EGL (where it loads) and
     with TinyRenderer, from the Waffle Pi's camera pose at the turtlebot3_world spawn."""
     from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
-    from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
+    from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
     from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
     results = {}
     pose = None  # the camera's optical frame in the world: (position, 3x3 rotation)
@@ -686,11 +687,6 @@ def median(values):
     return statistics.median(values)
 
 
-GROUPS = ("startup", "realtime", "jitter", "fast", "world", "subscribers", "camera", "render",
-          "meshes", "meshworld", "meshcamera", "multi", "learning")
-EXTRA_GROUPS = ("soak", "hostile")   # long: run only when named in --only
-
-
 def measure_soak():
     """bench/soak.py's last line: (RSS MB at the start, at the end, growth over the last
     third)."""
@@ -710,7 +706,7 @@ def measure_hostile(minutes=20.0):
     out = subprocess.run([sys.executable, os.path.join(HERE, "hostile_soak.py"), "--minutes",
                           str(minutes)], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                          text=True, check=False).stdout
-    line = [l for l in out.splitlines() if l.startswith("RESULT ")]
+    line = [text for text in out.splitlines() if text.startswith("RESULT ")]
     if not line:
         raise RuntimeError("hostile_soak.py gave no result: %s" % out[-500:])
     fields = line[-1].split()[1:]
@@ -723,149 +719,144 @@ def measure_hostile(minutes=20.0):
     return result
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--runs", type=int, default=3, help="runs per figure (median)")
-    parser.add_argument("--only", default=",".join(GROUPS),
-                        help="comma-separated groups of rows to run (default: all but "
-                        "soak and hostile, which take 15 to 20 and 22 minutes): " + ", ".join(GROUPS + EXTRA_GROUPS))
-    args = parser.parse_args()
-    only = [g.strip() for g in args.only.split(",") if g.strip()]
-    unknown = [g for g in only if g not in GROUPS + EXTRA_GROUPS]
-    if unknown or not only:
-        parser.error("--only: unknown group %r (groups: %s)"
-                     % (",".join(unknown), ", ".join(GROUPS + EXTRA_GROUPS)))
-    if args.runs < 1:
-        parser.error("--runs must be at least 1")
-    rows = []
-    started = time.time()
+def startup_rows(runs, row):
+    """The startup group: roslaunch -> first /scan, its floor, and a second make demo."""
+    row("start-up: roslaunch (with roscore) -> first /scan",
+        "%.2f" % median([measure_startup() for _ in range(runs)]), "s", TARGETS["startup"])
+    row("  floor: roslaunch (with roscore), no node -> a parameter set",
+        "%.2f" % median([measure_roslaunch_floor() for _ in range(runs)]), "s")
+    row("start-up, a second make demo: make setup + roslaunch -> first /scan",
+        "%.2f" % median([measure_warm_demo() for _ in range(runs)]), "s",
+        TARGETS["startup_warm_demo"])
 
-    def row(name, value, unit, target=""):
-        rows.append((name, value, unit, target))
-        print("  %-58s %10s %-8s %s" % (name, value, unit, target), flush=True)
 
-    print("tutorial_turtlebot benchmark: %d runs each, median; %s, %d cores, load average %s"
-          % (args.runs, os.uname().nodename, os.cpu_count(),
-             " ".join("%.2f" % v for v in os.getloadavg())), flush=True)
-    if "startup" in only:
-        row("start-up: roslaunch (with roscore) -> first /scan",
-            "%.2f" % median([measure_startup() for _ in range(args.runs)]), "s",
-            TARGETS["startup"])
-        row("  floor: roslaunch (with roscore), no node -> a parameter set",
-            "%.2f" % median([measure_roslaunch_floor() for _ in range(args.runs)]), "s")
-        row("start-up, a second make demo: make setup + roslaunch -> first /scan",
-            "%.2f" % median([measure_warm_demo() for _ in range(args.runs)]), "s",
-            TARGETS["startup_warm_demo"])
-    if "realtime" in only:
-        rt = [measure_running(1.0, ALL_SENSORS) for _ in range(args.runs)]
-        row("real time, every sensor subscribed: achieved factor",
-            "%.2f" % median([r[0] for r in rt]), "x")
-        row("real time, every sensor subscribed: sim CPU",
-            "%.1f" % median([r[1] for r in rt]), "% core", TARGETS["rt_cpu"])
-        row("real time, every sensor subscribed: sim memory (RSS)",
-            "%.0f" % median([r[2] for r in rt]), "MB", TARGETS["rt_mem"])
-        floors = [paced_floor() for _ in range(args.runs)]
-        row("  floor: Simulation.step paced as the node paces it, no ROS: CPU",
-            "%.1f" % median([f[0] for f in floors]), "% core")
-        row("  floor: the same with every sensor computed: CPU",
-            "%.1f" % median([f[1] for f in floors]), "% core")
-    if "jitter" in only:
-        jitter = [measure_jitter() for _ in range(args.runs)]
-        for topic in JITTER_TOPICS:
-            row("real time, %s arrival-interval error p50 / p99 / max" % topic,
-                " / ".join("%.1f" % median([j[topic][k] for j in jitter if topic in j])
-                           for k in range(3)), "ms", "each <= 5 ms of its moment")
-    if "fast" in only:
-        fast = [measure_fast() for _ in range(args.runs)]
-        row("as fast as possible, every sensor subscribed",
-            "%.1f" % median([f["all"] for f in fast]), "x", TARGETS["fast_all"])
-        for part in PART_ROWS:
-            row("  the same: the loop's wall time per sim second, %s" % part,
-                "%.1f" % median([f["parts"][part] for f in fast]), "ms")
-    if "world" in only:
-        with_states = ALL_SENSORS + ["/gazebo/model_states"]
-        rt_states = [measure_running(1.0, with_states) for _ in range(args.runs)]
-        row("real time, every sensor and /gazebo/model_states subscribed: sim CPU",
-            "%.1f" % median([r[1] for r in rt_states]), "% core", TARGETS["rt_cpu_states"])
-        row("as fast as possible, every sensor and /gazebo/model_states subscribed",
-            "%.1f" % median([measure_running(0, with_states)[0] for _ in range(args.runs)]),
-            "x", TARGETS["fast_all"])
-        calls = [measure_world_calls() for _ in range(args.runs)]
-        row("spawn_sdf_model / delete_model round trip (median of 20)",
-            "%.0f / %.0f" % (median([c[0] for c in calls]), median([c[1] for c in calls])),
-            "ms", "each < 50 ms")
-        row("stage 1, DQN-style client stepping once per scan (24 samples, max speed)",
-            "%.1f" % median([measure_stage_client() for _ in range(args.runs)]), "steps/s",
-            TARGETS["stage"])
-        row("  floor: the same client's steps against a bare 1 kHz /scan node, no sim",
-            "%.1f" % median([measure_stage_client_floor() for _ in range(args.runs)]),
-            "steps/s")
-    if "fast" in only:
-        row("as fast as possible, only /odom subscribed",
-            "%.1f" % median([f["odom"] for f in fast]), "x")
-        row("physics bound: pybullet alone, no ROS, no sensors (before and after each run)",
-            "%.1f" % median([f["bound"] for f in fast]), "x")
-        row("  fast (every sensor) / physics bound",
-            "%.2f" % median([f["all"] / f["bound"] for f in fast]), "", TARGETS["fast_all_bound"])
-        row("  fast (only /odom) / physics bound",
-            "%.2f" % median([f["odom"] / f["bound"] for f in fast]), "",
-            TARGETS["fast_odom_bound"])
-        row("  ceiling: Simulation.step, no ROS, no sensors / physics bound",
-            "%.2f" % median([f["stepped"] / f["bound"] for f in fast]), "")
-        row("  ceiling: Simulation.step and every sensor, no ROS / physics bound",
-            "%.2f" % median([f["with_sensors"] / f["bound"] for f in fast]), "")
-    if "subscribers" in only:
-        for n in (1, 4, 8):
-            row("as fast as possible, %d subscriber(s) to /scan" % n,
-                "%.1f" % median([measure_running(0, ["/scan:%d" % n])[0]
-                                 for _ in range(args.runs)]), "x")
-    if "camera" in only:
-        for model, target in (("waffle_pi", ">= 27/s at >= 0.9x"), ("waffle", "")):
-            cam = [measure_running(1.0, ["/camera/rgb/image_raw"], model=model)
-                   for _ in range(args.runs)]
-            row("%s camera subscribed, real time: images per sim second" % model,
-                "%.1f" % median([r[3] for r in cam]), "/s", target)
-            row("%s camera subscribed, real time: achieved factor" % model,
-                "%.2f" % median([r[0] for r in cam]), "x")
-            row("%s camera subscribed, real time: sim CPU" % model,
-                "%.0f" % median([r[1] for r in cam]), "% core")
-    if "render" in only:
-        for (renderer, width, height), ms in sorted(render_times().items()):
-            row("render %dx%d, %s" % (width, height, renderer), "%.1f" % ms, "ms")
-    if "meshes" in only:
-        mesh_rows(args.runs, row)
-    if "meshworld" in only:
-        mesh_world_rows(args.runs, row)
-    if "meshcamera" in only:
-        mesh_camera_rows(args.runs, row)
-    if "multi" in only:
-        multi_rows(args.runs, row)
-    if "learning" in only:
-        learning_rows(args.runs, row)
-    if "soak" in only:   # one run: it is long
-        first, last, growth = measure_soak()
-        row("soak, 30 sim min with churn: sim RSS at the start / at the end", "%.0f / %.0f"
-            % (first, last), "MB")
-        row("soak: RSS growth over the last third", "%.2f" % growth, "MB", "< 2 MB")
-    if "hostile" in only:   # one run: it is long
-        hostile = measure_hostile()
-        row("hostile soak, 20 wall min: the sim alive at the end", "yes" if hostile["alive"]
-            else "NO", "", "yes")
-        row("hostile soak: longest wall time between two /clock", "%.2f" % hostile["gap"], "s",
-            "<= 2 s")
-        row("hostile soak: sim RSS idle / after a first round / at the end", "%.0f / %.0f / %.0f"
-            % (hostile["rss_idle"], hostile["rss_start"], hostile["rss_end"]), "MB",
-            "end <= first round + 50 MB")
-        row("hostile soak: sim CPU s per sim s at the start / at the end", "%.3f / %.3f"
-            % (hostile["cpu_start"], hostile["cpu_end"]), "", "end <= start x 1.1")
-        row("hostile soak: sim threads after a first round / at the end", "%d / %d"
-            % (hostile["threads_start"], hostile["threads_end"]), "", "end <= first round + 10")
-        row("hostile soak: a client's /scan rate", "%.2f" % hostile["scan_hz"], "Hz of sim time",
-            ">= 4.75 (5 published)")
-    print("(%.0f s; load average now %s)" % (time.time() - started,
-                                             " ".join("%.2f" % v for v in os.getloadavg())),
-          flush=True)
+def realtime_rows(runs, row):
+    """The realtime group: factor, CPU and memory at real time, and the paced floor."""
+    rt = [measure_running(1.0, ALL_SENSORS) for _ in range(runs)]
+    row("real time, every sensor subscribed: achieved factor",
+        "%.2f" % median([r[0] for r in rt]), "x")
+    row("real time, every sensor subscribed: sim CPU",
+        "%.1f" % median([r[1] for r in rt]), "% core", TARGETS["rt_cpu"])
+    row("real time, every sensor subscribed: sim memory (RSS)",
+        "%.0f" % median([r[2] for r in rt]), "MB", TARGETS["rt_mem"])
+    floors = [paced_floor() for _ in range(runs)]
+    row("  floor: Simulation.step paced as the node paces it, no ROS: CPU",
+        "%.1f" % median([f[0] for f in floors]), "% core")
+    row("  floor: the same with every sensor computed: CPU",
+        "%.1f" % median([f[1] for f in floors]), "% core")
+
+
+def jitter_rows(runs, row):
+    """The jitter group: each topic's arrival-interval error at real time."""
+    jitter = [measure_jitter() for _ in range(runs)]
+    for topic in JITTER_TOPICS:
+        row("real time, %s arrival-interval error p50 / p99 / max" % topic,
+            " / ".join("%.1f" % median([j[topic][k] for j in jitter if topic in j])
+                       for k in range(3)), "ms", "each <= 5 ms of its moment")
+
+
+def fast_rows(runs, row):
+    """The fast group's first rows (factor and loop parts); returns the runs for
+    fast_bound_rows."""
+    fast = [measure_fast() for _ in range(runs)]
+    row("as fast as possible, every sensor subscribed",
+        "%.1f" % median([f["all"] for f in fast]), "x", TARGETS["fast_all"])
+    for part in PART_ROWS:
+        row("  the same: the loop's wall time per sim second, %s" % part,
+            "%.1f" % median([f["parts"][part] for f in fast]), "ms")
+    return fast
+
+
+def world_rows(runs, row):
+    """The world group: /gazebo/model_states subscribed, world calls, the stage 1 client."""
+    with_states = ALL_SENSORS + ["/gazebo/model_states"]
+    rt_states = [measure_running(1.0, with_states) for _ in range(runs)]
+    row("real time, every sensor and /gazebo/model_states subscribed: sim CPU",
+        "%.1f" % median([r[1] for r in rt_states]), "% core", TARGETS["rt_cpu_states"])
+    row("as fast as possible, every sensor and /gazebo/model_states subscribed",
+        "%.1f" % median([measure_running(0, with_states)[0] for _ in range(runs)]),
+        "x", TARGETS["fast_all"])
+    calls = [measure_world_calls() for _ in range(runs)]
+    row("spawn_sdf_model / delete_model round trip (median of 20)",
+        "%.0f / %.0f" % (median([c[0] for c in calls]), median([c[1] for c in calls])),
+        "ms", "each < 50 ms")
+    row("stage 1, DQN-style client stepping once per scan (24 samples, max speed)",
+        "%.1f" % median([measure_stage_client() for _ in range(runs)]), "steps/s",
+        TARGETS["stage"])
+    row("  floor: the same client's steps against a bare 1 kHz /scan node, no sim",
+        "%.1f" % median([measure_stage_client_floor() for _ in range(runs)]),
+        "steps/s")
+
+
+def fast_bound_rows(row, fast):
+    """The fast group's last rows (after the world group's): /odom only, the physics bound
+    and the ceilings, from fast_rows' runs."""
+    row("as fast as possible, only /odom subscribed",
+        "%.1f" % median([f["odom"] for f in fast]), "x")
+    row("physics bound: pybullet alone, no ROS, no sensors (before and after each run)",
+        "%.1f" % median([f["bound"] for f in fast]), "x")
+    row("  fast (every sensor) / physics bound",
+        "%.2f" % median([f["all"] / f["bound"] for f in fast]), "", TARGETS["fast_all_bound"])
+    row("  fast (only /odom) / physics bound",
+        "%.2f" % median([f["odom"] / f["bound"] for f in fast]), "",
+        TARGETS["fast_odom_bound"])
+    row("  ceiling: Simulation.step, no ROS, no sensors / physics bound",
+        "%.2f" % median([f["stepped"] / f["bound"] for f in fast]), "")
+    row("  ceiling: Simulation.step and every sensor, no ROS / physics bound",
+        "%.2f" % median([f["with_sensors"] / f["bound"] for f in fast]), "")
+
+
+def subscriber_rows(runs, row):
+    """The subscribers group: as fast as possible with 1, 4, 8 subscribers to /scan."""
+    for n in (1, 4, 8):
+        row("as fast as possible, %d subscriber(s) to /scan" % n,
+            "%.1f" % median([measure_running(0, ["/scan:%d" % n])[0]
+                             for _ in range(runs)]), "x")
+
+
+def camera_rows(runs, row):
+    """The camera group: the Waffle Pi's and the Waffle's camera subscribed at real time."""
+    for model, target in (("waffle_pi", ">= 27/s at >= 0.9x"), ("waffle", "")):
+        cam = [measure_running(1.0, ["/camera/rgb/image_raw"], model=model)
+               for _ in range(runs)]
+        row("%s camera subscribed, real time: images per sim second" % model,
+            "%.1f" % median([r[3] for r in cam]), "/s", target)
+        row("%s camera subscribed, real time: achieved factor" % model,
+            "%.2f" % median([r[0] for r in cam]), "x")
+        row("%s camera subscribed, real time: sim CPU" % model,
+            "%.0f" % median([r[1] for r in cam]), "% core")
+
+
+def render_rows(row):
+    """The render group: ms per image at each resolution and renderer (one measurement)."""
+    for (renderer, width, height), ms in sorted(render_times().items()):
+        row("render %dx%d, %s" % (width, height, renderer), "%.1f" % ms, "ms")
+
+
+def soak_rows(row):
+    """The soak group (one run: it is long): sim RSS over 30 sim minutes with churn."""
+    first, last, growth = measure_soak()
+    row("soak, 30 sim min with churn: sim RSS at the start / at the end", "%.0f / %.0f"
+        % (first, last), "MB")
+    row("soak: RSS growth over the last third", "%.2f" % growth, "MB", "< 2 MB")
+
+
+def hostile_rows(row):
+    """The hostile group (one run: it is long): bench/hostile_soak.py's figures."""
+    hostile = measure_hostile()
+    row("hostile soak, 20 wall min: the sim alive at the end", "yes" if hostile["alive"]
+        else "NO", "", "yes")
+    row("hostile soak: longest wall time between two /clock", "%.2f" % hostile["gap"], "s",
+        "<= 2 s")
+    row("hostile soak: sim RSS idle / after a first round / at the end", "%.0f / %.0f / %.0f"
+        % (hostile["rss_idle"], hostile["rss_start"], hostile["rss_end"]), "MB",
+        "end <= first round + 50 MB")
+    row("hostile soak: sim CPU s per sim s at the start / at the end", "%.3f / %.3f"
+        % (hostile["cpu_start"], hostile["cpu_end"]), "", "end <= start x 1.1")
+    row("hostile soak: sim threads after a first round / at the end", "%d / %d"
+        % (hostile["threads_start"], hostile["threads_end"]), "", "end <= first round + 10")
+    row("hostile soak: a client's /scan rate", "%.2f" % hostile["scan_hz"], "Hz of sim time",
+        ">= 4.75 (5 published)")
 
 
 def mesh_rows(runs, row):
@@ -1035,15 +1026,17 @@ def mesh_camera_rows(runs, row):
         "%.2f" % median([r[0] for r in floor]), "x")
 
 
-def multi_rows(runs, row):
-    """The several-robot rows: three robots in the house; how the cost grows with 1, 2, 4, 8."""
-    def bound_rows(label, bounds, fast_factor):
-        bare, with_sensors = (median([b[k] for b in bounds]) for k in (0, 1))
-        row("  %s without ROS: physics alone / physics and sensors" % label,
-            "%.0f / %.0f" % (bare, with_sensors), "x")
-        row("  as fast as possible / (physics and sensors, no ROS)",
-            "%.2f" % (fast_factor / with_sensors), "")
+def multi_bound_rows(row, label, bounds, fast_factor):
+    """The rows of ``bounds`` (robots_bound's runs) beside the factor as fast as possible."""
+    bare, with_sensors = (median([b[k] for b in bounds]) for k in (0, 1))
+    row("  %s without ROS: physics alone / physics and sensors" % label,
+        "%.0f / %.0f" % (bare, with_sensors), "x")
+    row("  as fast as possible / (physics and sensors, no ROS)",
+        "%.2f" % (fast_factor / with_sensors), "")
 
+
+def multi_house_rows(runs, row):
+    """Three robots in the house: at real time, as fast as possible, and without ROS."""
     house = [measure_house() for _ in range(runs)]
     name = "3 Burgers in the house (multi_turtlebot3.launch), all sensors subscribed"
     row("%s, real time: sim CPU" % name, "%.1f" % median([r[0][1] for r in house]),
@@ -1056,8 +1049,12 @@ def multi_rows(runs, row):
     row("  the same: sim CPU", "%.0f" % median([r[1][1] for r in house]), "% core")
     row("  the same: sim CPU time per sim second (1000 / it: the factor on a core of its own)",
         "%.0f" % median([10 * r[1][1] / r[1][0] for r in house]), "ms")
-    bound_rows("the same 3", [robots_bound(3, "turtlebot3_house", HOUSE_POSES)
-                              for _ in range(runs)], fast_factor)
+    multi_bound_rows(row, "the same 3", [robots_bound(3, "turtlebot3_house", HOUSE_POSES)
+                                         for _ in range(runs)], fast_factor)
+
+
+def multi_scaling_rows(runs, row):
+    """1, 2, 4, 8 robots in the empty world: how the cost grows."""
     scaling = [measure_scaling() for _ in range(runs)]
     for count in ROBOT_COUNTS:
         results = [s[count] for s in scaling]
@@ -1072,14 +1069,17 @@ def multi_rows(runs, row):
             "%.0f" % median([r[1][1] for r in results]), "% core")
         row("  the same: sim CPU time per sim second (as fast as possible)",
             "%.0f" % median([10 * r[1][1] / r[1][0] for r in results]), "ms")
-        bound_rows(label, [robots_bound(count) for _ in range(runs)], fast_factor)
+        multi_bound_rows(row, label, [robots_bound(count) for _ in range(runs)], fast_factor)
 
 
+def multi_rows(runs, row):
+    """The several-robot rows: three robots in the house; how the cost grows with 1, 2, 4, 8."""
+    multi_house_rows(runs, row)
+    multi_scaling_rows(runs, row)
 
-def learning_rows(runs, row):
-    """The learning group: bench/learning_speed.py's figures, each the median of ``runs``."""
-    import learning_speed as ls
-    cores = os.cpu_count()
+
+def learning_stage_1_rows(ls, runs, row):
+    """Stage 1 with one StageEnv beside its physics bound."""
     stage_1 = [ls.one_env_and_bound(1, seconds=10.0) for _ in range(runs)]
     row("learning stage 1, one StageEnv (no ROS): env steps/s",
         "%.1f" % median([e for e, _ in stage_1]), "steps/s")
@@ -1087,6 +1087,11 @@ def learning_rows(runs, row):
         "%.1f" % median([b for _, b in stage_1]), "steps/s")
     row("  one env / physics bound", "%.2f" % median([e / b for e, b in stage_1]), "",
         TARGETS["learning_bound"])
+
+
+def learning_vector_rows(ls, runs, row):
+    """The vector env and Gymnasium's AsyncVectorEnv beside one env."""
+    cores = os.cpu_count()
     vector = [ls.vector_and_one(seconds=15.0) for _ in range(runs)]
     row("learning stage 1, vector env (%d workers x 4 envs)" % cores,
         "%.1f" % median([v["vector"] for v in vector]), "steps/s")
@@ -1098,6 +1103,10 @@ def learning_rows(runs, row):
         "%.2f" % median([v["vector_per_cpu"] / v["one_per_cpu"] for v in vector]), "")
     row("  cores the workers got (CPU s per wall s; rest: other load)",
         "%.2f" % median([v["worker_cores"] for v in vector]), "of %d" % cores)
+
+
+def learning_step_size_rows(ls, runs, row):
+    """Coarser physics steps: their speed and how far the final pose moves."""
     speeds = [ls.coarse_speeds(seconds=9.0) for _ in range(runs)]
     diffs, contact = ls.pose_differences()
     for ts in (0.005, 0.01):
@@ -1108,12 +1117,20 @@ def learning_rows(runs, row):
             distance, yaw = diffs[name][ts]
             row("  final pose vs 0.0025 s, 100 steps, %s" % name,
                 "%.1f / %.2f" % (distance * 1000, yaw * 1000), "mm, mrad")
+
+
+def learning_stage_3_rows(ls, runs, row):
+    """Stage 3 (its moving obstacle) beside its physics bound."""
     stage_3 = [ls.one_env_and_bound(3, seconds=8.0) for _ in range(runs)]
     row("learning stage 3, one StageEnv: env steps/s",
         "%.1f" % median([e for e, _ in stage_3]), "steps/s")
     row("  physics bound (the obstacle's ticks included)",
         "%.1f" % median([b for _, b in stage_3]), "steps/s")
     row("  one env / physics bound", "%.2f" % median([e / b for e, b in stage_3]), "")
+
+
+def learning_render_rows(ls, runs, row):
+    """ms per render() (top-down picture; the Waffle Pi's camera) beside ms per env step."""
     renders = [ls.render_cost(1, seconds=5.0) for _ in range(runs)]
     row("learning stage 1, render() rgb_array / env step",
         "%.2f / %.2f" % (median([r for r, _ in renders]), median([s for _, s in renders])),
@@ -1123,6 +1140,94 @@ def learning_rows(runs, row):
     row("  render_camera (waffle_pi's camera) / env step",
         "%.2f / %.2f" % (median([r for r, _ in cameras]), median([s for _, s in cameras])),
         "ms")
+
+
+def learning_rows(runs, row):
+    """The learning group: bench/learning_speed.py's figures, each the median of ``runs``."""
+    import learning_speed as ls
+    for rows in (learning_stage_1_rows, learning_vector_rows, learning_step_size_rows,
+                 learning_stage_3_rows, learning_render_rows):
+        rows(ls, runs, row)
+
+
+class Group(NamedTuple):
+    """One entry of GROUP_TABLE: a group of rows of the table and how to run it."""
+
+    name: str                          # its name for --only
+    rows: Callable[..., Any]           # prints its rows; returns what later entries need
+    needs: Tuple[str, ...] = ("runs", "row")  # rows' arguments: runs, row, earlier results
+    minutes: str = ""                  # wall minutes it takes, if too long for the default
+
+
+# The groups in the order of the table's rows; a name may come twice (fast: its last rows come
+# after the world group's). Each entry's result, unless None, is kept under its name.
+GROUP_TABLE = (
+    Group("startup", startup_rows),
+    Group("realtime", realtime_rows),
+    Group("jitter", jitter_rows),
+    Group("fast", fast_rows),
+    Group("world", world_rows),
+    Group("fast", fast_bound_rows, needs=("row", "fast")),
+    Group("subscribers", subscriber_rows),
+    Group("camera", camera_rows),
+    Group("render", render_rows, needs=("row",)),
+    Group("meshes", mesh_rows),
+    Group("meshworld", mesh_world_rows),
+    Group("meshcamera", mesh_camera_rows),
+    Group("multi", multi_rows),
+    Group("learning", learning_rows),
+    Group("soak", soak_rows, needs=("row",), minutes="15 to 20"),      # one run: it is long
+    Group("hostile", hostile_rows, needs=("row",), minutes="22"),      # one run: it is long
+)
+GROUPS = tuple(dict.fromkeys(g.name for g in GROUP_TABLE if not g.minutes))
+EXTRA_GROUPS = tuple(g.name for g in GROUP_TABLE if g.minutes)   # run only when in --only
+
+
+def parse_args():
+    """The command line: --runs and --only (checked; --only as a list of group names)."""
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--runs", type=int, default=3, help="runs per figure (median)")
+    long_ones = [g for g in GROUP_TABLE if g.minutes]
+    parser.add_argument("--only", default=",".join(GROUPS),
+                        help="comma-separated groups of rows to run (default: all but "
+                        "%s, which take %s minutes): " % (
+                            " and ".join(g.name for g in long_ones),
+                            " and ".join(g.minutes for g in long_ones))
+                        + ", ".join(GROUPS + EXTRA_GROUPS))
+    args = parser.parse_args()
+    args.only = [g.strip() for g in args.only.split(",") if g.strip()]
+    unknown = [g for g in args.only if g not in GROUPS + EXTRA_GROUPS]
+    if unknown or not args.only:
+        parser.error("--only: unknown group %r (groups: %s)"
+                     % (",".join(unknown), ", ".join(GROUPS + EXTRA_GROUPS)))
+    if args.runs < 1:
+        parser.error("--runs must be at least 1")
+    return args
+
+
+def main():
+    """Print the table: the rows of each group --only names, in GROUP_TABLE's order."""
+    args = parse_args()
+    rows = []
+    started = time.time()
+
+    def row(name, value, unit, target=""):
+        rows.append((name, value, unit, target))
+        print("  %-58s %10s %-8s %s" % (name, value, unit, target), flush=True)
+
+    print("tutorial_turtlebot benchmark: %d runs each, median; %s, %d cores, load average %s"
+          % (args.runs, os.uname().nodename, os.cpu_count(),
+             " ".join("%.2f" % v for v in os.getloadavg())), flush=True)
+    found = {"runs": args.runs, "row": row}   # what the entries need
+    for group in GROUP_TABLE:
+        if group.name in args.only:
+            result = group.rows(*(found[need] for need in group.needs))
+            if result is not None:
+                found[group.name] = result
+    print("(%.0f s; load average now %s)" % (time.time() - started,
+                                             " ".join("%.2f" % v for v in os.getloadavg())),
+          flush=True)
 
 
 if __name__ == "__main__":

@@ -126,7 +126,6 @@ def rss_kb(pid="self"):
     return None
 
 
-
 def node_on_master(name: str, port: int):
     """The pid of the process running ROS node ``name`` (its ``__name:=`` argument) on the
     master at local ``port`` (its ROS_MASTER_URI in its environment), None if there is none."""

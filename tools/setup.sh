@@ -364,10 +364,12 @@ workspace_inputs() {
   # A digest of everything catkin_make reads: the build files and hooks of every package in
   # src/, the messages, the rostest files it globs, what is linked, and its own command line.
   # The Python code is not in it: the devel space points at src/, so an edit needs no build.
+  # The CMakeLists.txt of the source folder is left out: catkin_make makes it, so a digest
+  # taken before the first build would differ from the next one's and build once more.
   local args=$1
   {
     printf '%s\n' "$args"
-    (cd "$WS/src" && find -L . -maxdepth 1 | sort)
+    (cd "$WS/src" && find -L . -maxdepth 1 ! -name CMakeLists.txt | sort)
     (cd "$ROOT" && find CMakeLists.txt package.xml setup.py env-hooks msgs ros_shims \
         test/rostest -type f \( ! -path 'test/rostest/*' -o -name '*.test' \) -print0 \
         | sort -z | xargs -0 sha256sum)

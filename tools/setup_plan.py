@@ -48,6 +48,9 @@ XACRO = "xacro==1.13.3"
 # (numpy, cloudpickle, typing-extensions, farama-notifications); 1.1.1 is the last for 3.8.
 GYMNASIUM = "gymnasium>=1.0,<2"
 CATKIN_LINT = "catkin-lint==1.6.25"  # make test checks the packages' CMakeLists.txt and package.xml
+# make test's lint (test/unit/package/test_lint.py): pycodestyle at 100 columns and pyflakes,
+# pinned so that every platform reads the code alike (both take Python 3.8 to 3.13)
+LINT = ("pycodestyle==2.12.1", "pyflakes==3.2.0")
 WHEEL_MACHINES = ("x86_64", "amd64")
 WHEEL_PYTHONS = ((3, 8), (3, 11))  # pybullet 3.2.7 wheels: cp38, cp39, cp310, cp311
 # pybullet 3.2.7's C passes numpy arrays as PyObject*: GCC 14 (Debian 13, Ubuntu 24.10) made
@@ -144,7 +147,7 @@ class Plan:
     @property
     def pip(self):
         meshes = MESH_PIP_PY38 if tuple(self.python) == (3, 8) else MESH_PIP
-        return ((PYBULLET, self.numpy) + meshes + (XACRO, CATKIN_LINT, GYMNASIUM)
+        return ((PYBULLET, self.numpy) + meshes + (XACRO, CATKIN_LINT, GYMNASIUM) + LINT
                 + ((self.pytest,) if self.pytest else ())
                 + ((PILLOW_NOETIC,) if self.ros == "noetic" else ()))
 

@@ -24,6 +24,7 @@ environment steps and wall time (when matplotlib imports), then one summary line
 """
 import argparse
 import csv
+import importlib
 import os
 import sys
 import time
@@ -147,7 +148,7 @@ def plot(rows, path, title):
 def make_stage1(time_step):
     """One TurtleBot3Stage1-v0 (a function, so that SB3 adds no render_mode)."""
     import gymnasium
-    import tutorial_turtlebot.learning  # noqa: F401  (registers TurtleBot3Stage1-v0)
+    importlib.import_module("tutorial_turtlebot.learning")  # registers TurtleBot3Stage1-v0
 
     return gymnasium.make("TurtleBot3Stage1-v0", time_step=time_step)
 

@@ -23,3 +23,7 @@ class WorldError(UserError):
 
 class UrdfError(UserError):
     """Missing or malformed robot description (URDF) file."""
+
+
+class RequestError(UserError):
+    """A world request Gazebo would refuse: ``str(err)`` is its status message, one line."""

@@ -13,6 +13,7 @@ import sys
 import termios
 import threading
 import time
+import unittest
 
 import rosgraph
 import roslib.packages
@@ -28,7 +29,9 @@ from std_srvs.srv import Empty
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
 import process_helpers  # noqa: E402
-from process_helpers import cpu_seconds, free_port, rss_kb, stop_process  # noqa: E402,F401
+from process_helpers import cpu_seconds, free_port, rss_kb, stop_process  # noqa: E402
+
+REEXPORTED = (cpu_seconds, free_port, rss_kb, stop_process)  # imported from here by the tests
 
 
 def yaw_of(q) -> float:
@@ -219,6 +222,21 @@ class Gazebo:
         time.sleep(wall_seconds)
         end = self.clock.latest(10.0).clock.to_sec()
         return (end - start) / (time.monotonic() - t0)
+
+
+class SimTestCase(unittest.TestCase):
+    """Base of the test nodes that use /gazebo's services: setUpClass starts the node (named
+    ``node_name``, by default the test file's name) and waits for the services (``cls.gz``).
+    A subclass's own setUpClass calls super().setUpClass() first."""
+
+    node_name = None   # the test node's name; None: the name of the file the class is in
+
+    @classmethod
+    def setUpClass(cls):
+        name = cls.node_name or os.path.splitext(
+            os.path.basename(sys.modules[cls.__module__].__file__))[0]
+        rospy.init_node(name)
+        cls.gz = Gazebo()
 
 
 def executable(name: str, package: str = "tutorial_turtlebot") -> str:

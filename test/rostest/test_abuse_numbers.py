@@ -5,7 +5,6 @@ field (or, a huge quaternion, normalised); the robot, /odom and /scan stay finit
 puts the robot back at its spawn on the floor. Every wait is on wall time with a limit."""
 import math
 import time
-import unittest
 
 import rospy
 import rostest
@@ -13,7 +12,7 @@ from gazebo_msgs.msg import ModelState, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from sensor_msgs.msg import LaserScan
 
-from sim_test_support import ROBOT, Driver, Gazebo, Recorder, wait_for
+from sim_test_support import ROBOT, Driver, Recorder, SimTestCase, wait_for
 from sim_test_support import SHORT_WAIT as WAIT
 
 SPAWN = (-2.0, -0.5)
@@ -44,11 +43,10 @@ def finite(*values):
     return all(math.isfinite(v) for v in values)
 
 
-class AbuseNumbersTest(unittest.TestCase):
+class AbuseNumbersTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_abuse_numbers")
-        cls.gz = Gazebo()
+        super().setUpClass()
         cls.drive = Driver()
         cls.scan = Recorder("scan", LaserScan)
         assert cls.drive.odom.latest(WAIT) is not None, "no odom"

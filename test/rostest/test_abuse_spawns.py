@@ -10,7 +10,6 @@ import shutil
 import subprocess
 import tempfile
 import time
-import unittest
 
 import rospkg
 import rospy
@@ -20,7 +19,7 @@ from rosgraph_msgs.msg import Clock
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
-from sim_test_support import SHORT_WAIT, Gazebo, NodeProcess, Recorder, free_port, wait_for
+from sim_test_support import SHORT_WAIT, NodeProcess, Recorder, SimTestCase, free_port, wait_for
 
 ANSWER = 8.0      # wall s: a refusal comes at once; the node gives up on its loop after 10 s
 PACKAGE = rospkg.RosPack().get_path("tutorial_turtlebot")
@@ -47,11 +46,10 @@ def sdf_with(body):
             "</model></sdf>" % body)
 
 
-class AbuseSpawnsTest(unittest.TestCase):
+class AbuseSpawnsTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_abuse_spawns")
-        cls.gz = Gazebo()
+        super().setUpClass()
         cls.odom = Recorder("odom", Odometry)
         cls.scan = Recorder("scan", LaserScan)
         assert cls.odom.latest(SHORT_WAIT) is not None, "no odom"
@@ -136,7 +134,7 @@ class AbuseSpawnsTest(unittest.TestCase):
         self.refused(lambda: self.gz.spawn_sdf_model(
             "cabinet", "<sdf version='1.6'><model name='m'><include><uri>%s</uri></include>"
                        "</model></sdf>" % fifo, "", pose(1.0, -1.0), ""),
-            "cabinet", "<include> of %s" % fifo, "it is a FIFO, not a regular file")
+                     "cabinet", "<include> of %s" % fifo, "it is a FIFO, not a regular file")
         obj = os.path.join(self.tmp, "painted.obj")
         with open(obj, "w") as f:
             f.write("mtllib painted.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl red\n"

@@ -99,5 +99,6 @@ class GazeboWorldMeshesTest(unittest.TestCase):
         # base_footprint on the Burger
         self.assertAlmostEqual(ahead, 1.0 - 0.1 + 0.032, delta=0.04)
 
+
 if __name__ == "__main__":
     rostest.rosrun("tutorial_turtlebot", "gazebo_world_meshes", GazeboWorldMeshesTest)

@@ -275,7 +275,6 @@ class HostileClientsTest(unittest.TestCase):
             self.assertIsNotNone(took, "%s: the sim ignored SIGINT for 10 s" % state)
             self.assertLess(took, STOP, "%s: the sim took %.2f s to stop" % (state, took))
 
-
     def ball_sdf(self):
         """A movable model whose mesh is 60,000 points on a 0.2 m sphere (an OBJ of our own,
         in a temporary folder): every point is a corner of its convex hull."""
@@ -289,7 +288,7 @@ class HostileClientsTest(unittest.TestCase):
                 z = 1.0 - 2.0 * (i + 0.5) / count
                 r = math.sqrt(1.0 - z * z)
                 f.write("v %.6f %.6f %.6f\n" % (0.2 * r * math.cos(golden * i),
-                                                 0.2 * r * math.sin(golden * i), 0.2 * z))
+                                                0.2 * r * math.sin(golden * i), 0.2 * z))
             for i in range(0, count - 2, 3):
                 f.write("f %d %d %d\n" % (i + 1, i + 2, i + 3))
         mesh = "<geometry><mesh><uri>file://%s</uri></mesh></geometry>" % path

@@ -114,7 +114,7 @@ def reward_bound(a, b) -> float:
 
 SCAN_OFFSET = -0.032   # m: base_scan ahead of base_footprint (the burger URDF)
 OBSTACLE_REACH = 1.3   # m: stage 3's pillars turn within 1.0 m of the centre, its walls are
-                       # 1.925 m from it
+# 1.925 m from it
 
 
 def obstacle_rays(pose, ranges) -> np.ndarray:
@@ -310,7 +310,7 @@ class LearningEquivalence(unittest.TestCase):
                 failures.append("%d: scan differs by %.4f m" % (i, scan_diff))
             if e["done"] != r["done"] or e["goal"] != r["goal"]:
                 failures.append("%d: done %s/%s goal %s/%s" % (i, e["done"], r["done"],
-                                                                e["goal"], r["goal"]))
+                                                               e["goal"], r["goal"]))
             if self.stage == 3 and e["entry"] is not None and not dobst <= OBSTACLE_YAW_TOL:
                 failures.append("%d: obstacle yaw differs by %.4f rad" % (i, dobst))
             if e["entry"] is None:

@@ -5,7 +5,6 @@ Every wait is on wall time with a limit."""
 import math
 import os
 import time
-import unittest
 
 import rospy
 import rostest
@@ -15,7 +14,7 @@ from gazebo_msgs.msg import ModelState
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 
-from sim_test_support import Gazebo, NodeProcess, Recorder, pose, publishers, wait_for, yaw_of
+from sim_test_support import NodeProcess, Recorder, SimTestCase, pose, publishers, wait_for, yaw_of
 from sim_test_support import SHORT_WAIT as WAIT
 
 ROBOTS = ("tb3_0", "tb3_1", "tb3_2")
@@ -27,12 +26,11 @@ URDF_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, o
 BURGER = os.path.join(URDF_DIR, "turtlebot3_burger.urdf")
 
 
-class MultiTurtleBot3(unittest.TestCase):
+class MultiTurtleBot3(SimTestCase):
 
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_multi_turtlebot3")
-        cls.gz = Gazebo()
+        super().setUpClass()
         cls.odom = {r: Recorder("/%s/odom" % r, Odometry) for r in ROBOTS}
         cls.scan = {r: Recorder("/%s/scan" % r, LaserScan) for r in ROBOTS}
         cls.imu = {r: Recorder("/%s/imu" % r, Imu) for r in ROBOTS}

@@ -18,14 +18,13 @@ that part anywhere else fail at once, and runs that keep parting fail after the 
 Waits on wall time with limits."""
 import math
 import time
-import unittest
 
 import rospy
 import rostest
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 
-from sim_test_support import Driver, Gazebo, wait_for
+from sim_test_support import Driver, SimTestCase, wait_for
 
 TICK = 1.0 / 30.0   # s: the diff drive's control period
 # (sim time s, linear m/s, angular rad/s): forward, a tight turn, backing while turning, stop;
@@ -39,11 +38,10 @@ MISS_WINDOW = 0.1  # s of sim time after a command's time where a missed tick sh
 ATTEMPTS = 3       # runs after a reset to find one whose commands met their ticks
 
 
-class ResetExactTest(unittest.TestCase):
+class ResetExactTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_reset_exact")
-        cls.gz = Gazebo()
+        super().setUpClass()
         cls.driver = Driver()
 
     def run_schedule(self):

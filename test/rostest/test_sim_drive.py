@@ -15,7 +15,6 @@ from rosgraph_msgs.msg import Clock
 from sim_test_support import WAIT, Driver, Recorder, later, wait_for, yaw_of
 
 
-
 class SimDriveTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

@@ -126,7 +126,8 @@ class SimGraphTest(unittest.TestCase):
     def test_imu_at_rest(self):
         msg = self.imu.latest()
         self.assertEqual(msg.header.frame_id, "imu_link")
-        self.assertAlmostEqual(msg.linear_acceleration.z, 9.8, delta=0.3)  # gravity, as the real IMU
+        # gravity, as the real IMU
+        self.assertAlmostEqual(msg.linear_acceleration.z, 9.8, delta=0.3)
         self.assertAlmostEqual(yaw_of(msg.orientation), 0.0, delta=0.02)
         self.assertAlmostEqual(msg.angular_velocity.z, 0.0, delta=0.05)
 

@@ -41,7 +41,7 @@ class SimTeleopGraphTest(unittest.TestCase):
         cls.nodes = {rosgraph.names.ns_join(n.namespace, n.name): n for n in cls.config.nodes}
         teleop = cls.nodes.get(TELEOP)
         assert teleop is not None, "sim_teleop.launch declares no %s: %s" % (TELEOP,
-                                                                           sorted(cls.nodes))
+                                                                             sorted(cls.nodes))
         for key, param in cls.config.params.items():  # what the launch sets besides sim.launch
             if not rospy.has_param(key):
                 rospy.set_param(key, param.value)

@@ -10,6 +10,7 @@ import rostest
 
 from sim_test_support import Driver, box_outside_arena, wait_for, yaw_of
 
+
 class SimWallTest(unittest.TestCase):
     def test_full_speed_into_the_wall_stops_at_it(self):
         rospy.init_node("test_sim_wall")

@@ -14,7 +14,6 @@ from rosgraph_msgs.msg import Clock
 from sim_test_support import WAIT, NodeProcess, wait_for
 
 
-
 class SingleSimTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

@@ -7,7 +7,6 @@ wall is spawned, with one warning line naming the wall and a z_pos.
 Every wait is on wall time with a limit."""
 import math
 import os
-import unittest
 
 import rospy
 import rostest
@@ -15,7 +14,7 @@ from gazebo_msgs.msg import ModelState
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import LaserScan
 
-from sim_test_support import WAIT, Gazebo, NodeProcess, Recorder, pose, wait_for
+from sim_test_support import WAIT, NodeProcess, Recorder, SimTestCase, pose, wait_for
 
 ROBOT = "turtlebot3_burger"
 BURGER = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "urdf",
@@ -30,11 +29,10 @@ def roll_pitch(q):
     return roll, pitch
 
 
-class SpawnFloorsTest(unittest.TestCase):
+class SpawnFloorsTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_spawn_floors")
-        cls.gz = Gazebo()
+        super().setUpClass()
         cls.log = []      # every node's log lines on /rosout (their stamps come unordered)
         rospy.Subscriber("/rosout", Log, cls.log.append, queue_size=100)
         assert cls.gz.wait_names(lambda n: ROBOT in n, WAIT), cls.gz.names()

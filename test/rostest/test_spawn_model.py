@@ -8,16 +8,16 @@ import os
 import subprocess
 import tempfile
 import time
-import unittest
 
 import rospy
 import rostest
 
-from sim_test_support import ROBOT, WAIT, Gazebo, NodeProcess, executable, wait_for, yaw_of
+from sim_test_support import ROBOT, WAIT, NodeProcess, SimTestCase, executable, wait_for, yaw_of
 
 BOX = """<sdf version="1.6"><model name="box"><link name="link">
   <inertial><mass>0.1</mass><inertia><ixx>0.0004</ixx><iyy>0.0004</iyy><izz>0.0004</izz></inertia></inertial>
-  <collision name="collision"><geometry><box><size>0.15 0.15 0.15</size></box></geometry></collision>
+  <collision name="collision"><geometry><box><size>0.15 0.15 0.15</size></box></geometry>\
+</collision>
   <visual name="visual"><geometry><box><size>0.15 0.15 0.15</size></box></geometry></visual>
 </link></model></sdf>"""
 STATIC_BOX = BOX.replace("<link", "<static>true</static><link", 1)
@@ -35,11 +35,10 @@ def run(*args, stdin=None, env=None):
     return done.returncode, done.stdout, done.stderr
 
 
-class SpawnModelTest(unittest.TestCase):
+class SpawnModelTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_spawn_model")
-        cls.gz = Gazebo()
+        super().setUpClass()
         assert cls.gz.wait_names(lambda n: ROBOT in n, WAIT), cls.gz.names()
         cls.tmp = tempfile.mkdtemp(prefix="spawn_model_test_")
         cls.box_file = os.path.join(cls.tmp, "box.sdf")

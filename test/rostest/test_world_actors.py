@@ -4,22 +4,20 @@ roslaunch: /gazebo/model_states lists the actors after the world's models and be
 as Gazebo 11 lists them (World::LoadEntities); the walker moves along its script in sim time;
 the laser does not see it (Gazebo's CPU ray sensor never sees an actor)."""
 import math
-import unittest
 
 import rospy
 import rostest
 from sensor_msgs.msg import LaserScan
 
-from sim_test_support import WAIT, Gazebo, Recorder, wait_for
+from sim_test_support import WAIT, Recorder, SimTestCase, wait_for
 
 MODELS = ["ground_plane", "curtain_rail", "wall", "walker", "pacer", "turtlebot3_burger"]
 
 
-class WorldActorsTest(unittest.TestCase):
+class WorldActorsTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_world_actors")
-        cls.gz = Gazebo()
+        super().setUpClass()
         cls.scans = Recorder("scan", LaserScan)
         assert cls.scans.latest(WAIT) is not None, "no scan"
 
@@ -42,6 +40,7 @@ class WorldActorsTest(unittest.TestCase):
                       later[0] - start[0])
         self.assertGreater(moved, 0.3)      # 2 m a side in 4 s, 1 s turning at each corner
         self.assertLess(moved, 0.8 * (later[0] - start[0]) + 0.3)
+
         # while the walker is 2.3 to 3.7 m straight ahead of the laser, it returns nothing
         def ahead_of_the_laser():
             x, y, _ = self.gz.position("walker")
@@ -50,6 +49,7 @@ class WorldActorsTest(unittest.TestCase):
         scan = self.scans.latest()
         ahead = sorted(scan.ranges[i] for i in (-2, -1, 0, 1, 2))[2]
         self.assertTrue(math.isinf(ahead) or ahead > scan.range_max, ahead)
+
 
 if __name__ == "__main__":
     rostest.rosrun("tutorial_turtlebot", "test_world_actors", WorldActorsTest)

@@ -6,21 +6,20 @@ at its spawn, no spawned model, real time)."""
 import math
 import os
 import time
-import unittest
 
 import rospy
 import rostest
 from gazebo_msgs.msg import LinkStates, ModelState, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
-from nav_msgs.msg import Odometry
 
-from sim_test_support import ROBOT, Driver, Gazebo, wait_for, yaw_of
+from sim_test_support import ROBOT, Driver, SimTestCase, wait_for, yaw_of
 from sim_test_support import SHORT_WAIT as WAIT
 
 SPAWN = (-2.0, -0.5)
 BOX = """<sdf version="1.6"><model name="box"><link name="link">
   <inertial><mass>0.1</mass><inertia><ixx>0.0004</ixx><iyy>0.0004</iyy><izz>0.0004</izz></inertia></inertial>
-  <collision name="collision"><geometry><box><size>0.15 0.15 0.15</size></box></geometry></collision>
+  <collision name="collision"><geometry><box><size>0.15 0.15 0.15</size></box></geometry>\
+</collision>
   <visual name="visual"><geometry><box><size>0.15 0.15 0.15</size></box></geometry></visual>
 </link></model></sdf>"""
 
@@ -37,11 +36,10 @@ def goal_xml():
         return f.read()
 
 
-class WorldApiTest(unittest.TestCase):
+class WorldApiTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_world_api")
-        cls.gz = Gazebo()
+        super().setUpClass()
         cls.drive = Driver()
         assert cls.drive.odom.latest(WAIT) is not None, "no odom"
 
@@ -169,9 +167,10 @@ class WorldApiTest(unittest.TestCase):
                                        initial_pose=pose(0.6, 0.0, zero_quaternion=True),
                                        reference_frame="world")
         self.assertTrue(resp.success, resp.status_message)
-        urdf = ('<robot name="r"><link name="base"><inertial><mass value="0.2"/><inertia ixx="0.001"'
-                ' iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry>'
-                '<cylinder radius="0.05" length="0.2"/></geometry></collision></link></robot>')
+        urdf = ('<robot name="r"><link name="base"><inertial><mass value="0.2"/>'
+                '<inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>'
+                '<collision><geometry><cylinder radius="0.05" length="0.2"/></geometry></collision>'
+                '</link></robot>')
         resp = self.gz.spawn_urdf_model(model_name="crate", model_xml=urdf,
                                         initial_pose=pose(-1.6, -1.6, 0.1), reference_frame="")
         self.assertTrue(resp.success, resp.status_message)
@@ -201,7 +200,8 @@ class WorldApiTest(unittest.TestCase):
              "reference frame"),
             (gz.set_model_state(ModelState(ROBOT, pose(nan, 0), Twist(), "")), "NaN"),
             (gz.get_link_state(link_name="nope::link"), "does not exist"),
-            (gz.get_model_properties(model_name="nope"), "GetModelProperties: model does not exist"),
+            (gz.get_model_properties(model_name="nope"),
+             "GetModelProperties: model does not exist"),
             (gz.spawn_sdf_model(model_name="box", model_xml=BOX), "entity already exists"),
             (gz.spawn_sdf_model(model_name="bad", model_xml="<sdf>\n<model name='m'>\n</sdf>"),
              "model_xml:3: malformed XML"),

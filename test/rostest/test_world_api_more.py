@@ -9,7 +9,6 @@ import os
 import subprocess
 import tempfile
 import time
-import unittest
 
 import rospy
 import rostest
@@ -22,12 +21,13 @@ from geometry_msgs.msg import Point, Vector3, Wrench
 from sensor_msgs.msg import Imu, LaserScan
 from std_msgs.msg import ColorRGBA
 
-from sim_test_support import ROBOT, Gazebo, Recorder, executable, pose, wait_for
+from sim_test_support import ROBOT, Recorder, SimTestCase, executable, pose, wait_for
 from sim_test_support import SHORT_WAIT as WAIT
 
 BOX = """<sdf version="1.6"><model name="box"><link name="link">
   <inertial><mass>2</mass><inertia><ixx>0.0075</ixx><iyy>0.0075</iyy><izz>0.0075</izz></inertia></inertial>
-  <collision name="collision"><geometry><box><size>0.15 0.15 0.15</size></box></geometry></collision>
+  <collision name="collision"><geometry><box><size>0.15 0.15 0.15</size></box></geometry>\
+</collision>
 </link></model></sdf>"""
 with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "fixtures",
                        "wheel.urdf")) as _f:
@@ -41,11 +41,10 @@ SERVICES = {"apply_body_wrench": ApplyBodyWrench, "clear_body_wrenches": BodyReq
 MODELS = ("box", "wheel", "wheel2")
 
 
-class WorldApiMoreTest(unittest.TestCase):
+class WorldApiMoreTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_world_api_more")
-        cls.gz = Gazebo()
+        super().setUpClass()
         for name, srv in SERVICES.items():
             rospy.wait_for_service("/gazebo/" + name, timeout=WAIT)
             setattr(cls, name, rospy.ServiceProxy("/gazebo/" + name, srv))

@@ -5,7 +5,6 @@ model_states streams). Waits on wall time with limits."""
 import math
 import os
 import time
-import unittest
 
 import rospy
 import rostest
@@ -13,16 +12,11 @@ from gazebo_msgs.msg import ModelState
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from sensor_msgs.msg import LaserScan
 
-from sim_test_support import Gazebo, wait_for, yaw_of
+from sim_test_support import SimTestCase, wait_for, yaw_of
 from sim_test_support import SHORT_WAIT as WAIT
 
 
-class StageTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        rospy.init_node("test_world_stages")
-        cls.gz = Gazebo()
-
+class StageTest(SimTestCase):
     def test_names_and_scan(self):
         self.assertTrue(self.gz.wait_names(
             lambda n: n == ["ground_plane", "turtlebot3_square", "obstacle", "turtlebot3_burger"]),
@@ -59,7 +53,8 @@ class StageTest(unittest.TestCase):
             self.gz.reset_simulation()
             resp = self.gz.spawn_sdf_model(model_name="goal", model_xml=xml,
                                            robot_namespace="robotos_name_space",
-                                           initial_pose=Pose(Point(x, 0, 0), Quaternion(0, 0, 0, 0)),
+                                           initial_pose=Pose(Point(x, 0, 0),
+                                                             Quaternion(0, 0, 0, 0)),
                                            reference_frame="world")
             self.assertTrue(resp.success, resp.status_message)
             self.assertTrue(self.gz.wait_names(lambda n: "goal" in n, WAIT))

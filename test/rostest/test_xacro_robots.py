@@ -11,7 +11,6 @@ import subprocess
 import sys
 import tempfile
 import time
-import unittest
 
 import rospy
 import rostest
@@ -20,7 +19,8 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
 
-from sim_test_support import WAIT, Gazebo, NodeProcess, Recorder, one_message, publishers, wait_for
+from sim_test_support import (WAIT, NodeProcess, Recorder, SimTestCase, one_message, publishers,
+                              wait_for)
 
 FIXTURES = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                          os.pardir, "fixtures"))
@@ -62,12 +62,11 @@ def xacro(command, model):
     return done.stdout, time.monotonic() - start
 
 
-class XacroRobots(unittest.TestCase):
+class XacroRobots(SimTestCase):
 
     @classmethod
     def setUpClass(cls):
-        rospy.init_node("test_xacro_robots")
-        cls.gz = Gazebo()
+        super().setUpClass()
         xacro_dir = subprocess.run(["rospack", "find", "xacro"], check=True,
                                    capture_output=True, text=True).stdout.strip()
         commands = {"burger": ["rosrun", "xacro", "xacro"],

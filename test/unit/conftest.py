@@ -25,12 +25,13 @@ def empty():
 
 @pytest.fixture
 def client():
-    """A pybullet client of its own (DIRECT: no window), disconnected afterwards."""
-    import pybullet
+    """A pybullet client of its own (DIRECT: no window), disconnected afterwards: an
+    engine.client.Client (``int(client)`` is its id, for pybullet's own functions)."""
+    from tutorial_turtlebot.sim.engine.client import Client
 
-    cid = pybullet.connect(pybullet.DIRECT)
-    yield cid
-    pybullet.disconnect(physicsClientId=cid)
+    connected = Client.connect()
+    yield connected
+    connected.disconnect()
 
 
 @pytest.fixture(autouse=True)

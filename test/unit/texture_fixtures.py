@@ -73,13 +73,15 @@ def write_textured_dae(folder, texture="tex.png", write_texture=True):
   <asset><unit meter="1"/><up_axis>Z_UP</up_axis></asset>
   <library_images><image id="skin-image"><init_from>{texture}</init_from></image></library_images>
   <library_effects><effect id="skin-effect"><profile_COMMON>
-    <newparam sid="skin-surface"><surface type="2D"><init_from>skin-image</init_from></surface></newparam>
+    <newparam sid="skin-surface"><surface type="2D">\
+<init_from>skin-image</init_from></surface></newparam>
     <newparam sid="skin-sampler"><sampler2D><source>skin-surface</source></sampler2D></newparam>
     <technique sid="common"><lambert>
       <diffuse><texture texture="skin-sampler" texcoord="UVMap"/></diffuse>
     </lambert></technique>
   </profile_COMMON></effect></library_effects>
-  <library_materials><material id="skin"><instance_effect url="#skin-effect"/></material></library_materials>
+  <library_materials><material id="skin">\
+<instance_effect url="#skin-effect"/></material></library_materials>
   <library_geometries><geometry id="box"><mesh>
     <source id="pos"><float_array id="pos-a" count="{np}">{positions}</float_array>
       <technique_common><accessor source="#pos-a" count="8" stride="3">

@@ -14,7 +14,9 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
 import process_helpers  # noqa: E402
-from process_helpers import cpu_seconds, free_port, stop_process, wait_for  # noqa: E402,F401
+from process_helpers import cpu_seconds, free_port, stop_process, wait_for  # noqa: E402
+
+REEXPORTED = (cpu_seconds, free_port, stop_process, wait_for)  # imported from here by the tests
 
 ROBOT = "turtlebot3_burger"   # the robot's model name in a Simulation of model burger
 

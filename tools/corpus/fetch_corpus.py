@@ -348,7 +348,7 @@ def main(argv=None):
     missing = build(manifest, root, args.mirrors, write=not args.check)
     worlds = len(manifest["worlds"])
     print("%d worlds in %s: %s" % (worlds, root, "complete" if not missing
-                                    else "%d things missing (above)" % missing))
+                                   else "%d things missing (above)" % missing))
     return 0 if not missing else 1
 
 

@@ -15,7 +15,7 @@ import rospy
 from sensor_msgs.msg import CameraInfo, CompressedImage, Image, PointCloud2, PointField
 
 from ..sim.devices.camera import (CameraIntrinsics, depth_image, jpeg_available, jpeg_bytes,
-                     pointcloud_bytes, pointcloud_xyz)
+                                  pointcloud_bytes, pointcloud_xyz)
 from rosgraph.names import ns_join
 
 COMPRESSED_FORMAT = "rgb8; jpeg compressed bgr8"  # as image_transport's compressed plugin

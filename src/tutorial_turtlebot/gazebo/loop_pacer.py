@@ -1,11 +1,12 @@
 """When the /gazebo loop's next step may run against the wall clock, and its sleeps until then.
 
-``LoopPacer`` is sim/world/pacing's ``Pacer`` (the real-time factor ``rtf``, sim s per wall s,
-0 = as fast as possible; ``batch_end``: physics runs ``Pacer.MIN_SLEEP`` wall s of steps at
-once, then sleeps; ``Pacer.MAX_LAG``: the most wall s it catches up after a stall) plus what
-the loop needs around it:
+``LoopPacer`` holds a sim/world/pacing ``Pacer`` (``pacer``) and passes on what the loop asks
+of it: the real-time factor ``rtf`` (sim s per wall s, 0 = as fast as possible; ``set_rtf``),
+``restart``, ``wall_of``, ``ahead``, ``batch_end`` (physics runs ``Pacer.MIN_SLEEP`` wall s of
+steps at once, then sleeps; ``Pacer.MAX_LAG``: the most wall s it catches up after a stall) and
+``achieved``; plus what the loop needs around it:
   sleep_until(t)   sleep until the wall clock reads ``t``, cut short by a request (the loop's
-                   wake event) or a stop; replaces ``Pacer.sleep_until`` (uninterruptible)
+                   wake event) or a stop
   clock_due(sim)   Gazebo's ~pub_clock_frequency: whether /clock of sim time ``sim`` may go
   frame_in_time(sim)  whether a camera frame due at sim time ``sim`` is drawn (at a pace: not
                    while the loop is behind the wall clock)
@@ -14,7 +15,7 @@ Units: wall times and durations in seconds of ``time.monotonic``; sim times in s
 import math
 import threading
 import time
-from typing import Callable
+from typing import Callable, Optional
 
 from .part_times import TIMES
 from ..sim.world.pacing import Pacer
@@ -29,8 +30,8 @@ SHORT_SLEEP = 0.025
 SHORTEST_SLEEP = 0.0002
 
 
-class LoopPacer(Pacer):
-    """A Pacer whose sleeps a request or a stop cuts short, and the /clock throttle."""
+class LoopPacer:
+    """A Pacer's pace, sleeps that a request or a stop cuts short, and the /clock throttle."""
 
     def __init__(self, rtf: float, wake: threading.Event, stopping: Callable[[], bool],
                  pub_clock_frequency: float = 0.0):
@@ -38,12 +39,46 @@ class LoopPacer(Pacer):
         the node is to stop (looked at once every WAKE_CHECK wall s of a long sleep);
         ``pub_clock_frequency``: at most this many /clock messages a wall second (0 = no
         limit)."""
-        super().__init__(rtf)
+        self.pacer = Pacer(rtf)
         self._wake = wake
         self._stopping = stopping
         # /clock's least wall-time gap (s); 0 = none
         self.clock_gap = 1.0 / pub_clock_frequency if pub_clock_frequency > 0 else 0.0
         self._next_clock_wall = -math.inf
+
+    # --- the Pacer's, as the loop uses them --------------------------------------------------
+
+    @property
+    def rtf(self) -> float:
+        """The real-time factor (sim s per wall s; 0 = as fast as possible)."""
+        return self.pacer.rtf
+
+    def set_rtf(self, rtf: float, sim_time: float) -> None:
+        """A new factor from now on, at ``sim_time`` (ValueError if too slow: Pacer.set_rtf)."""
+        self.pacer.set_rtf(rtf, sim_time)
+
+    def restart(self, sim_time: float) -> None:
+        """Re-anchor at ``sim_time`` now (after a pause, a reset or at start)."""
+        self.pacer.restart(sim_time)
+
+    def wall_of(self, sim_time: float) -> float:
+        """The wall time at which ``sim_time`` is due; only for ``rtf`` > 0."""
+        return self.pacer.wall_of(sim_time)
+
+    def ahead(self, sim_time: float) -> float:
+        """Wall s by which ``sim_time`` runs ahead of the clock (Pacer.ahead)."""
+        return self.pacer.ahead(sim_time)
+
+    def batch_end(self, sim_time: float) -> Optional[float]:
+        """The wall time to sleep until once the batch of steps is done, else None
+        (Pacer.batch_end)."""
+        return self.pacer.batch_end(sim_time)
+
+    def achieved(self, sim_time: float) -> Optional[float]:
+        """The factor achieved since the last call, or None (Pacer.achieved)."""
+        return self.pacer.achieved(sim_time)
+
+    # --- the loop's own -------------------------------------------------------------------------
 
     def sleep_until(self, wall_time: float) -> bool:
         """Sleep (counted as "idle") until the clock reads ``wall_time``: True then; False as
@@ -70,7 +105,8 @@ class LoopPacer(Pacer):
         as possible). At real time it never bites."""
         if not self.clock_gap:
             return True
-        wall = self.wall_of(sim_time) if self.rtf > 0 else time.monotonic()
+        pacer = self.pacer
+        wall = pacer.wall_of(sim_time) if pacer.rtf > 0 else time.monotonic()
         if wall < self._next_clock_wall:
             return False
         self._next_clock_wall = wall + self.clock_gap
@@ -85,4 +121,5 @@ class LoopPacer(Pacer):
         (clients wait for it); at a pace only while the loop is not behind the wall clock. A
         frame drawn late makes the loop later still, and every frame after it: it is skipped
         instead, the image topics' rate falls and the sim keeps its pace."""
-        return self.rtf <= 0 or self.ahead(sim_time) >= 0.0
+        pacer = self.pacer
+        return pacer.rtf <= 0 or pacer.ahead(sim_time) >= 0.0

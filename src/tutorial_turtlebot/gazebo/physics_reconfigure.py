@@ -14,8 +14,8 @@ from dynamic_reconfigure.server import Server
 
 from . import physics_config
 from .loop_requests import NotAnswered
+from ..errors import RequestError
 from ..sim.world.physics_properties import PhysicsProperties, updated
-from ..sim.world.world_control import RequestError
 
 
 def as_config(props: PhysicsProperties) -> dict:

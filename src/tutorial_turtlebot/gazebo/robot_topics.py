@@ -27,7 +27,7 @@ from std_srvs.srv import Empty, EmptyResponse
 
 from .camera_publisher import CameraPublisher
 from .impl.packed_messages import (PackedImu, PackedJointState, PackedLaserScan, PackedOdometry,
-                              PackedTransform)
+                                   PackedTransform)
 from .part_times import TIMES
 
 # Gazebo diff-drive plugin's pose covariance diagonal (x, y, z, roll, pitch, yaw).

@@ -50,18 +50,17 @@ import time
 
 import rosgraph.names
 import rospy
-import rospy.impl.simtime
 from rosgraph_msgs.msg import Clock
 from tf2_msgs.msg import TFMessage
-from rospy.rostime import _set_rostime
 
 from .impl import (connection_caps, publisher_connects, service_guard, tcpros_guard,
                    unreachable_publishers)
+from .impl.own_clock import own_the_clock, set_time
 from .loop_pacer import WAKE_CHECK, LoopPacer
 from .loop_requests import ANSWER_TIMEOUT, Busy, LoopRequests
 from .impl.master_watch import MasterWatch
 from .world_api import WorldApi
-from ..errors import UserError, one_line
+from ..errors import RequestError, UserError, one_line
 from ..node_output import line_buffered
 from ..node_params import checked_number, converted
 from ..sim.kinematics import yaw_from_quat
@@ -74,7 +73,6 @@ from .robot_topics import RobotTopics
 from .send_queue import SendQueue
 from .single_instance import refuse_if_running
 from ..sim.world.simulation import SimConfig, Simulation
-from ..sim.world.world_models import RequestError
 from ..sim.files import mesh_cache
 from ..sim.files.world_catalogue import world_from_command_line
 
@@ -175,7 +173,7 @@ class SimNode:
         """A publisher whose messages go through the send queue: written from the loop without
         blocking (a subscriber that stops reading loses old messages)."""
         publisher = rospy.Publisher(topic, msg_type, queue_size=queue_size)
-        make_nonblocking(publisher, self.sends)
+        make_nonblocking(publisher, self.sends.backlog)
         return publisher
 
     def add_output(self, name: str, publish) -> None:
@@ -277,7 +275,7 @@ class SimNode:
 
     def _publish_clock(self, stamp) -> None:
         # The sim's own rospy time follows its clock directly (see main: no /clock round trip).
-        _set_rostime(stamp)
+        set_time(stamp)
         if not self.pacer.clock_due(self.sim.time):   # Gazebo's ~pub_clock_frequency
             return
         TIMES.switch("serializing")
@@ -435,16 +433,6 @@ class SimNode:
                       "; ".join(poses) or "no robot", " (paused)" if self.paused else "")
 
 
-def _own_the_clock() -> None:
-    """The sim is the clock: under /use_sim_time rospy would subscribe this node to /clock and
-    deserialize every message it publishes itself; instead its rospy time is set directly in
-    _publish_clock. (rospy.impl.simtime keeps that subscription as ``_clock_sub``.)"""
-    subscription = getattr(rospy.impl.simtime, "_clock_sub", None)
-    if subscription is not None:
-        subscription.unregister()
-        rospy.impl.simtime._clock_sub = None
-
-
 def _node_params():
     """(SimConfig, real_time_factor, paused, status_period, pub_clock_frequency) of the node's
     private params; UserError (one line) when one is bad. gui:=true without a display runs
@@ -470,14 +458,15 @@ def _node_params():
 
 
 def _log_warning(line: str) -> None:
-    rospy.logwarn("gazebo: %s", line)
+    """One warning line as it is (at most 200 characters): /rosout names the node."""
+    rospy.logwarn("%s", line)
 
 
 def _log_start(sim: Simulation, config: SimConfig, real_time_factor: float) -> None:
     """What the world file names but Gazebo would skip, what its building could not draw as
     its files say (sim.physics.warnings: textures), the robot (or none) and the camera."""
     for warning in tuple(sim.world.warnings) + tuple(sim.physics.warnings):
-        rospy.logwarn("gazebo: %s", warning)
+        _log_warning(warning)
     if sim.robot is not None:
         rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
                       config.model, config.world, sim.spawn[0], sim.spawn[1], sim.spawn[3],
@@ -517,7 +506,8 @@ def main() -> None:
     unreachable_publishers.install()
     # Before the first service: a malformed request is one throttled line, not a traceback.
     service_guard.install()
-    _own_the_clock()
+    # The sim is the clock: its rospy time is set in _publish_clock, not from its own /clock.
+    own_the_clock()
     mesh_cache.warning_sink = _log_warning     # the disk mesh cache's one line, if any
     try:
         config, real_time_factor, paused, status_period, pub_clock_frequency = _node_params()

@@ -58,14 +58,15 @@ from std_srvs.srv import Empty, EmptyResponse
 
 from .callback_pace import CallbackPace
 from .loop_requests import ANSWER_TIMEOUT, MAX_QUEUED, Busy, NotAnswered
-from ..errors import one_line
+from ..errors import RequestError, one_line
 from .part_times import TIMES
 from ..sim.world.physics_properties import OdeConfig, PhysicsProperties
 from ..sim.world.spawn_request import prepare_spawn
-from ..sim.world.world_control import RequestError, WorldControl
+from ..sim.world.world_control import WorldControl
 from ..sim.world.world_models import spawn_failure
 
 METRICS_PERIOD = 1.0     # wall s between two ~performance_metrics
+MAX_LOG_LINE = 200       # characters of one warning line in the log
 BUSY = ("the simulation is busy (%d requests wait for it); nothing was done: try again"
         % MAX_QUEUED)
 JOINT_TYPES = {"revolute": GetJointPropertiesResponse.REVOLUTE,
@@ -87,6 +88,24 @@ def failure(srv_type, text: str):
     if hasattr(response, "status_message"):
         response.status_message = text
     return response
+
+
+def spawn_warning(name: str, warning: str) -> str:
+    """The log line of a spawned model's ``warning``: "spawn NAME: ...", at most
+    MAX_LOG_LINE characters (the model's name cut to 40)."""
+    line = "spawn %s: %s" % (name if len(name) <= 40 else name[:37] + "...", warning)
+    return line if len(line) <= MAX_LOG_LINE else line[:MAX_LOG_LINE - 3] + "..."
+
+
+def refusals_answered(srv_type, handler):
+    """``handler`` with a RequestError (Gazebo's refusal) as its answer: ``failure`` of the
+    error's text (success False, status_message the text)."""
+    def handle(request):
+        try:
+            return handler(request)
+        except RequestError as err:
+            return failure(srv_type, str(err))
+    return handle
 
 
 def pose_in(msg):
@@ -155,7 +174,7 @@ class WorldApi:
         self.topic_pace = CallbackPace()   # a flooding publisher of the two topics is slowed
         rospy.Subscriber("~set_model_state", ModelState, self._on_set_model_state, queue_size=10)
         rospy.Subscriber("~set_link_state", LinkState, self._on_set_link_state, queue_size=10)
-        for name, srv_type, handler in (
+        for name, srv_type, handler in (   # every handler's RequestError is its answer
                 ("get_model_state", GetModelState, self._get_model_state),
                 ("set_model_state", SetModelState, self._set_model_state),
                 ("get_link_state", GetLinkState, self._get_link_state),
@@ -179,7 +198,8 @@ class WorldApi:
                 ("get_light_properties", GetLightProperties, self._get_light_properties),
                 ("set_light_properties", SetLightProperties, self._set_light_properties)):
             wrap = self._answered if name.startswith("spawn_") else self._in_loop
-            rospy.Service("~" + name, srv_type, wrap(name, srv_type, handler))
+            rospy.Service("~" + name, srv_type,
+                          wrap(name, srv_type, refusals_answered(srv_type, handler)))
         self.metrics = PerformanceMeter(self)
         self.reconfigure = None
         try:
@@ -271,13 +291,8 @@ class WorldApi:
     # --- handlers (run in the loop) ----------------------------------------------------------
 
     def _get_model_state(self, req):
+        pose, twist, seq = self.control.get_model_state(req.model_name, req.relative_entity_name)
         resp = GetModelStateResponse()
-        try:
-            pose, twist, seq = self.control.get_model_state(req.model_name,
-                                                            req.relative_entity_name)
-        except RequestError as err:
-            resp.success, resp.status_message = False, str(err)
-            return resp
         resp.header.seq = seq
         resp.header.stamp = rospy.Time(*divmod(self.sim.time_ns, 1_000_000_000))
         resp.header.frame_id = req.relative_entity_name
@@ -288,11 +303,8 @@ class WorldApi:
 
     def _set_model_state(self, req):
         state = req.model_state
-        try:
-            self.control.set_model_state(state.model_name, pose_in(state.pose),
-                                         twist_in(state.twist), state.reference_frame)
-        except RequestError as err:
-            return SetModelStateResponse(False, str(err))
+        self.control.set_model_state(state.model_name, pose_in(state.pose),
+                                     twist_in(state.twist), state.reference_frame)
         return SetModelStateResponse(True, "SetModelState: set model state done")
 
     def _on_set_model_state(self, state: ModelState) -> None:
@@ -302,12 +314,8 @@ class WorldApi:
             key=("set_model_state", state.model_name))
 
     def _get_link_state(self, req):
+        pose, twist = self.control.get_link_state(req.link_name, req.reference_frame)
         resp = GetLinkStateResponse()
-        try:
-            pose, twist = self.control.get_link_state(req.link_name, req.reference_frame)
-        except RequestError as err:
-            resp.success, resp.status_message = False, str(err)
-            return resp
         resp.link_state.link_name = req.link_name
         resp.link_state.reference_frame = req.reference_frame
         fill_pose(resp.link_state.pose, pose)
@@ -317,11 +325,8 @@ class WorldApi:
 
     def _set_link_state(self, req):
         state = req.link_state
-        try:
-            self.control.set_link_state(state.link_name, pose_in(state.pose),
-                                        twist_in(state.twist), state.reference_frame)
-        except RequestError as err:
-            return SetLinkStateResponse(False, str(err))
+        self.control.set_link_state(state.link_name, pose_in(state.pose),
+                                    twist_in(state.twist), state.reference_frame)
         return SetLinkStateResponse(True, "SetLinkState: set link state done")
 
     def _on_set_link_state(self, state: LinkState) -> None:
@@ -337,12 +342,8 @@ class WorldApi:
                                           status_message="GetWorldProperties: got properties")
 
     def _get_model_properties(self, req):
+        props = self.control.model_properties(req.model_name)
         resp = GetModelPropertiesResponse()
-        try:
-            props = self.control.model_properties(req.model_name)
-        except RequestError as err:
-            resp.success, resp.status_message = False, str(err)
-            return resp
         resp.body_names, resp.geom_names = props.body_names, props.geom_names
         resp.joint_names, resp.is_static = props.joint_names, props.is_static
         resp.success, resp.status_message = True, "GetModelProperties: got properties"
@@ -354,33 +355,29 @@ class WorldApi:
         physics and the other requests go on), then the loop builds it."""
         def spawn(req):
             name, namespace = req.model_name, req.robot_namespace
-            try:
-                pose = self.run_in_loop(lambda: self.control.spawn_pose(
-                    name, pose_in(req.initial_pose), req.reference_frame, namespace))
-                prepared = prepare_spawn(name, req.model_xml, pose, kind)
-                self.run_in_loop(lambda: self._build(prepared, pose, namespace))
-            except RequestError as err:
-                return SpawnModelResponse(False, str(err))
-            for warning in prepared.world.warnings if prepared.world is not None else ():
-                rospy.logwarn("spawn %s: %s", name, warning)   # what Gazebo would skip too
+            pose = self.run_in_loop(lambda: self.control.spawn_pose(
+                name, pose_in(req.initial_pose), req.reference_frame, namespace))
+            prepared = prepare_spawn(name, req.model_xml, pose, kind)
+            built = self.run_in_loop(lambda: self._build(prepared, pose, namespace))
+            # what Gazebo would skip too, then what the building could not draw as its files say
+            for warning in (prepared.world.warnings if prepared.world is not None else ()) + built:
+                rospy.logwarn("%s", spawn_warning(name, warning))
             return SpawnModelResponse(True, "SpawnModel: Successfully spawned entity")
         return spawn
 
-    def _build(self, prepared, pose, namespace) -> None:
+    def _build(self, prepared, pose, namespace) -> tuple:
         """In the loop: build a prepared spawn, and a robot's topics (if they cannot be made,
-        it is out of the world again)."""
-        self.control.spawn_prepared(prepared, pose, namespace)
+        it is out of the world again); the building's warning lines."""
+        built = tuple(self.control.spawn_prepared(prepared, pose, namespace))
         try:
             self.node.sync_robots()  # a robot URDF: its plugins' topics
         except RequestError as err:
             rospy.logerr("spawn: %s", err)
             raise spawn_failure(str(err)) from None
+        return built
 
     def _delete_model(self, req):
-        try:
-            self.control.delete(req.model_name)
-        except RequestError as err:
-            return DeleteModelResponse(False, str(err))
+        self.control.delete(req.model_name)
         self.node.sync_robots()  # a robot's topics go with it
         return DeleteModelResponse(True, "DeleteModel: successfully deleted model")
 
@@ -397,10 +394,7 @@ class WorldApi:
         g = req.gravity
         props = PhysicsProperties(req.time_step, req.max_update_rate, (g.x, g.y, g.z),
                                   ode_in(req.ode_config))
-        try:
-            self.apply_physics(props)
-        except RequestError as err:
-            return SetPhysicsPropertiesResponse(False, str(err))
+        self.apply_physics(props)
         return SetPhysicsPropertiesResponse(True, "physics engine updated")
 
     def apply_physics(self, props: PhysicsProperties) -> None:
@@ -412,13 +406,10 @@ class WorldApi:
 
     def _apply_body_wrench(self, req):
         p, w = req.reference_point, req.wrench
-        try:
-            self.control.apply_body_wrench(
-                req.body_name, req.reference_frame, (p.x, p.y, p.z),
-                (w.force.x, w.force.y, w.force.z), (w.torque.x, w.torque.y, w.torque.z),
-                req.start_time.to_nsec(), req.duration.to_nsec())
-        except RequestError as err:
-            return ApplyBodyWrenchResponse(False, str(err))
+        self.control.apply_body_wrench(
+            req.body_name, req.reference_frame, (p.x, p.y, p.z),
+            (w.force.x, w.force.y, w.force.z), (w.torque.x, w.torque.y, w.torque.z),
+            req.start_time.to_nsec(), req.duration.to_nsec())
         return ApplyBodyWrenchResponse(True, "")    # Gazebo says nothing more
 
     def _clear_body_wrenches(self, req):
@@ -426,11 +417,8 @@ class WorldApi:
         return BodyRequestResponse()
 
     def _apply_joint_effort(self, req):
-        try:
-            self.control.apply_joint_effort(req.joint_name, req.effort,
-                                            req.start_time.to_nsec(), req.duration.to_nsec())
-        except RequestError as err:
-            return ApplyJointEffortResponse(False, str(err))
+        self.control.apply_joint_effort(req.joint_name, req.effort, req.start_time.to_nsec(),
+                                        req.duration.to_nsec())
         return ApplyJointEffortResponse(True, "ApplyJointEffort: effort set")
 
     def _clear_joint_forces(self, req):
@@ -438,12 +426,8 @@ class WorldApi:
         return JointRequestResponse()
 
     def _get_link_properties(self, req):
+        props = self.control.get_link_properties(req.link_name)
         resp = GetLinkPropertiesResponse()
-        try:
-            props = self.control.get_link_properties(req.link_name)
-        except RequestError as err:
-            resp.success, resp.status_message = False, str(err)
-            return resp
         resp.com.position.x, resp.com.position.y, resp.com.position.z = props.com
         resp.com.orientation.w = 1.0       # the inertia is given in the link's axes
         resp.gravity_mode, resp.mass = props.gravity_mode, props.mass
@@ -453,42 +437,28 @@ class WorldApi:
 
     def _set_link_properties(self, req):
         c, q = req.com.position, req.com.orientation
-        try:
-            self.control.set_link_properties(
-                req.link_name, (c.x, c.y, c.z), req.gravity_mode, req.mass,
-                (req.ixx, req.ixy, req.ixz, req.iyy, req.iyz, req.izz),
-                com_orientation=(q.x, q.y, q.z, q.w))
-        except RequestError as err:
-            return SetLinkPropertiesResponse(False, str(err))
+        self.control.set_link_properties(
+            req.link_name, (c.x, c.y, c.z), req.gravity_mode, req.mass,
+            (req.ixx, req.ixy, req.ixz, req.iyy, req.iyz, req.izz),
+            com_orientation=(q.x, q.y, q.z, q.w))
         return SetLinkPropertiesResponse(True, "SetLinkProperties: properties set")
 
     def _get_joint_properties(self, req):
+        props = self.control.get_joint_properties(req.joint_name)
         resp = GetJointPropertiesResponse()
-        try:
-            props = self.control.get_joint_properties(req.joint_name)
-        except RequestError as err:
-            resp.success, resp.status_message = False, str(err)
-            return resp
         resp.type = JOINT_TYPES.get(props.kind, resp.REVOLUTE)
         resp.damping, resp.position, resp.rate = props.damping, props.position, props.rate
         resp.success, resp.status_message = True, "GetJointProperties: got properties"
         return resp
 
     def _set_model_configuration(self, req):
-        try:   # urdf_param_name is ignored, as Gazebo ignores it
-            status = self.control.set_model_configuration(
-                req.model_name, list(req.joint_names), list(req.joint_positions))
-        except RequestError as err:
-            return SetModelConfigurationResponse(False, str(err))
+        status = self.control.set_model_configuration(   # urdf_param_name: ignored, as Gazebo
+            req.model_name, list(req.joint_names), list(req.joint_positions))
         return SetModelConfigurationResponse(True, status)
 
     def _get_light_properties(self, req):
+        light = self.control.get_light(req.light_name)
         resp = GetLightPropertiesResponse()
-        try:
-            light = self.control.get_light(req.light_name)
-        except RequestError as err:
-            resp.success, resp.status_message = False, str(err)
-            return resp
         d = resp.diffuse
         d.r, d.g, d.b, d.a = light.diffuse
         resp.attenuation_constant = light.attenuation_constant
@@ -499,13 +469,10 @@ class WorldApi:
 
     def _set_light_properties(self, req):
         d, s, v = req.diffuse, req.specular, req.direction
-        try:
-            self.control.set_light(
-                req.light_name, req.cast_shadows, (d.r, d.g, d.b, d.a), (s.r, s.g, s.b, s.a),
-                (req.attenuation_constant, req.attenuation_linear, req.attenuation_quadratic),
-                (v.x, v.y, v.z), pose_in(req.pose))
-        except RequestError as err:
-            return SetLightPropertiesResponse(False, str(err))
+        self.control.set_light(
+            req.light_name, req.cast_shadows, (d.r, d.g, d.b, d.a), (s.r, s.g, s.b, s.a),
+            (req.attenuation_constant, req.attenuation_linear, req.attenuation_quadratic),
+            (v.x, v.y, v.z), pose_in(req.pose))
         return SetLightPropertiesResponse(True, "")
 
 

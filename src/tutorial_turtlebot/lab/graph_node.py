@@ -41,6 +41,7 @@ import rosgraph
 import rosgraph.impl.graph
 
 from ..errors import UserError
+from . import graph_output
 from . import ros_graph
 
 PROG = "graph"
@@ -122,7 +123,7 @@ def check_master() -> None:
         raise UserError("bad ROS_MASTER_URI %r: %s" % (uri, err)) from None
     except (OSError, rosgraph.MasterException) as err:
         raise NoMaster("cannot reach the ROS master at %s (%s): start one with roscore or "
-                        "roslaunch, or set ROS_MASTER_URI" % (uri, err)) from None
+                       "roslaunch, or set ROS_MASTER_URI" % (uri, err)) from None
 
 
 def snapshot() -> ros_graph.GraphSnapshot:
@@ -157,8 +158,8 @@ def write_output(path: str, dot: str) -> None:
     if done.returncode != 0:
         lines = done.stderr.decode("utf-8", "replace").strip().splitlines()
         raise UserError("dot could not write %s: %s" % (path, lines[-1] if lines
-                                                          else "exit status %d"
-                                                          % done.returncode))
+                                                        else "exit status %d"
+                                                        % done.returncode))
 
 
 def _replace(path: str, text: str) -> None:
@@ -173,7 +174,7 @@ def live_window(options: ros_graph.Options, interval: float, first: str) -> int:
     """An xdot window on a DOT file kept up to date; returns when the window is closed."""
     folder = tempfile.mkdtemp(prefix="ros_graph_")
     path = os.path.join(folder, "ros_graph.dot")
-    window = None  # type: Optional[subprocess.Popen]
+    window: Optional[subprocess.Popen] = None
     try:
         _replace(path, first)
         window = subprocess.Popen(["xdot", path], stdin=subprocess.DEVNULL)
@@ -187,7 +188,7 @@ def live_window(options: ros_graph.Options, interval: float, first: str) -> int:
             if window.poll() is not None:
                 break
             try:
-                dot = ros_graph.to_dot(ros_graph.build_view(snapshot(), options))
+                dot = graph_output.to_dot(ros_graph.build_view(snapshot(), options))
             except UserError as err:
                 if not lost:
                     sys.stderr.write("%s: %s; showing the last graph until it is back\n"
@@ -223,18 +224,18 @@ def run(argv) -> int:
     snap = snapshot()
     view = ros_graph.build_view(snap, args.options)
     if args.output is not None:
-        write_output(args.output, ros_graph.to_dot(view))
+        write_output(args.output, graph_output.to_dot(view))
         print("%s: wrote %s (%s)" % (PROG, args.output,
-                                     ros_graph.to_text(view).splitlines()[0]))
+                                     graph_output.to_text(view).splitlines()[0]))
         return 0
     has_display = bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
     if has_display and not args.text:
         if shutil.which("xdot") is not None:
             signal.signal(signal.SIGTERM, _on_sigterm)
-            return live_window(args.options, args.interval, ros_graph.to_dot(view))
+            return live_window(args.options, args.interval, graph_output.to_dot(view))
         sys.stderr.write("%s: no xdot for a window (apt-get install xdot); the graph as "
                          "text:\n" % PROG)
-    sys.stdout.write(ros_graph.to_text(view))
+    sys.stdout.write(graph_output.to_text(view))
     return 0
 
 

@@ -8,9 +8,9 @@ convention: the topic name with a leading space (``" /cmd_vel"``), so that a top
 of the same name stay apart.
 
 Output: a :class:`View` (what is drawn: vertices, namespace boxes, edges) made with
-rqt_graph's rules and defaults (doc/turtlebot3.md 8), written as rqt_graph's DOT text
-(:func:`to_dot`; graphviz ``dot`` or ``xdot`` lay it out) or as a plain-text picture for
-terminals (:func:`to_text`).
+rqt_graph's rules and defaults (doc/turtlebot3.md 8), written by graph_output as rqt_graph's
+DOT text (``to_dot``; graphviz ``dot`` or ``xdot`` lay it out) or as a plain-text picture for
+terminals (``to_text``).
 
 The three modes, as rqt_graph's combo box:
 
@@ -55,9 +55,6 @@ ACTION_SUFFIXES = ("/status", "/result", "/goal", "/cancel", "/feedback")
 IMAGE_SUFFIXES = ("/compressed", "/compressedDepth", "/theora", "")
 TF_TOPICS = ("/tf", "/tf_static")
 PARAM_SUFFIXES = ("/parameter_updates", "/parameter_descriptions")
-
-FONT_NAME = "sans"  # rqt_graph draws its labels in Qt's "sans", 11 px
-FONT_SIZE = 11
 
 DEAD, WONKY = "DEAD", "WONKY"  # a node that does not answer; one that answered again
 BAD_COLORS = {DEAD: "red", WONKY: "orange"}
@@ -278,6 +275,13 @@ def _hide_tf_and_params(topics, edges, conns, hide_tf: bool, hide_params: bool):
     return [t for t in topics if t not in removed], _without(edges, gone)
 
 
+def _member_edges(members, conns):
+    """(incoming edges, outgoing edges) of a group's member topics."""
+    incoming = [e for m in members for e in conns.get(m, ([], []))[0]]
+    outgoing = [e for m in members for e in conns.get(m, ([], []))[1]]
+    return incoming, outgoing
+
+
 def _group_topics(topics, edges, conns, key_suffix: str, suffixes: Sequence[str],
                   at_least: int, group_suffix: str):
     """Topics ``P + s`` (s in ``suffixes``, at least ``at_least`` of them, ``P + key_suffix``
@@ -294,9 +298,7 @@ def _group_topics(topics, edges, conns, key_suffix: str, suffixes: Sequence[str]
         if len(members) < at_least:
             continue
         removed.update(members)
-        incoming = [e for m in members for e in conns.get(m, ([], []))[0]]
-        outgoing = [e for m in members for e in conns.get(m, ([], []))[1]]
-        groups[prefix + group_suffix] = (incoming, outgoing)
+        groups[prefix + group_suffix] = _member_edges(members, conns)
     gone = [e for (inc, out) in groups.values() for e in inc + out]
     return [t for t in topics if t not in removed], _without(edges, gone), groups
 
@@ -362,14 +364,11 @@ def _box_of(name: str, level: int) -> Optional[str]:
     return "/".join(parts[:level + 1])
 
 
-def build_view(snapshot: GraphSnapshot, options: Optional[Options] = None) -> View:
-    """What rqt_graph draws for ``snapshot`` with ``options`` (default: rqt_graph's)."""
-    options = options or Options()
-    mode = check_mode(options.mode)
-    hide, group = options.hide, options.group
+def _selected(snapshot: GraphSnapshot, mode: str, options: Options):
+    """The mode's nodes, topics and edges that pass the node and topic filters (the nodes mode
+    has no topic vertex: its filter applies to the edges' labels)."""
     node_filter = _split_filter(options.node_filter)
     topic_filter = _split_filter(options.topic_filter)
-
     nodes = [n for n in sorted(snapshot.nn_nodes) if _wanted(n, node_filter)]
     if mode == "nodes":
         topics = []  # type: List[str]
@@ -377,8 +376,13 @@ def build_view(snapshot: GraphSnapshot, options: Optional[Options] = None) -> Vi
     else:
         topics = [t for t in sorted(snapshot.nt_nodes) if _wanted(t, topic_filter)]
         edges = list(snapshot.nt_edges if mode == "active" else snapshot.nt_all_edges)
-    edges = sorted(set(edges))
+    return nodes, topics, sorted(set(edges))
 
+
+def _hide_debug_and_unreachable(snapshot: GraphSnapshot, mode: str, hide: FrozenSet[str],
+                                nodes, topics, edges):
+    """Drop debug nodes and topics (and, in the nodes mode, debug edges); drop unreachable
+    nodes."""
     if "debug" in hide:
         nodes = [n for n in nodes if _not_debug(n)]
         topics = [t for t in topics if _not_debug(t)]
@@ -387,36 +391,49 @@ def build_view(snapshot: GraphSnapshot, options: Optional[Options] = None) -> Vi
                      and _not_debug(e.start) and _not_debug(e.end)]
     if "unreachable" in hide:  # rqt_graph leaves their edges; here they go with the node
         nodes = [n for n in nodes if n not in snapshot.bad_nodes]
+    return nodes, topics, edges
 
-    groups = []  # (group name, incoming edges, outgoing edges, namespace box allowed)
-    if mode != "nodes":
-        conns = _connections(edges)
-        topics, edges = _hide_leaves(topics, edges, conns, "leaf-topics" in hide,
-                                     "dead-sinks" in hide)
-        topics, edges = _hide_tf_and_params(topics, edges, conns, "tf" in hide,
-                                            "params" in hide)
-        if "actions" in group:
-            topics, edges, actions = _group_topics(topics, edges, conns, "/feedback",
-                                                   ACTION_SUFFIXES, 5, "/action_topics")
-            groups += [(name, inc, out, True) for name, (inc, out) in actions.items()]
-        if "images" in group:
-            topics, edges, images = _group_topics(topics, edges, conns, "/compressed",
-                                                  IMAGE_SUFFIXES, 3, "/image_topics")
-            groups += [(name, inc, out, True) for name, (inc, out) in images.items()]
-        if "tf" in group and "tf" not in hide:
-            topics, edges, tf = _group_tf(topics, edges, conns)
-            if tf is not None:
-                groups.append(("/tf", tf[0], tf[1], False))
 
+def _hide_and_group_topics(topics, edges, hide: FrozenSet[str], group: FrozenSet[str]):
+    """The topic modes' rules: hide leaves, dead sinks, tf and params, then group actions,
+    images and tf; returns (topics, edges, groups), groups as (group name, incoming edges,
+    outgoing edges, namespace box allowed)."""
+    groups = []
+    conns = _connections(edges)
+    topics, edges = _hide_leaves(topics, edges, conns, "leaf-topics" in hide,
+                                 "dead-sinks" in hide)
+    topics, edges = _hide_tf_and_params(topics, edges, conns, "tf" in hide, "params" in hide)
+    if "actions" in group:
+        topics, edges, actions = _group_topics(topics, edges, conns, "/feedback",
+                                               ACTION_SUFFIXES, 5, "/action_topics")
+        groups += [(name, inc, out, True) for name, (inc, out) in actions.items()]
+    if "images" in group:
+        topics, edges, images = _group_topics(topics, edges, conns, "/compressed",
+                                              IMAGE_SUFFIXES, 3, "/image_topics")
+        groups += [(name, inc, out, True) for name, (inc, out) in images.items()]
+    if "tf" in group and "tf" not in hide:
+        topics, edges, tf = _group_tf(topics, edges, conns)
+        if tf is not None:
+            groups.append(("/tf", tf[0], tf[1], False))
+    return topics, edges, groups
+
+
+def _drop_unlinked(nodes, topics, edges):
+    """Edges whose ends are both still drawn, and the topics left with an edge."""
     present = set(nodes) | set(topics)
     edges = [e for e in edges if e.start in present and e.end in present]
     linked = {e.start for e in edges} | {e.end for e in edges}
-    topics = [t for t in topics if t in linked]
+    return [t for t in topics if t in linked], edges
 
-    level = options.namespace_level if "namespaces" in group else 0
+
+def _clusters(nodes, topics, groups, level: int) -> List[str]:
+    """The namespace boxes of the drawn topics, boxable groups and nodes (none at level 0)."""
     names = [t.strip() for t in topics] + [g[0] for g in groups if g[3]] + nodes
-    clusters = _namespace_boxes(names, level) if level > 0 else []
+    return _namespace_boxes(names, level) if level > 0 else []
 
+
+def _vertices(snapshot: GraphSnapshot, nodes, topics, groups, level: int) -> List[Vertex]:
+    """The drawn vertices: topics, then topic groups, then nodes, each in its namespace box."""
     vertices = []
     for topic in topics:
         name = topic.strip()
@@ -431,7 +448,12 @@ def build_view(snapshot: GraphSnapshot, options: Optional[Options] = None) -> Vi
                                node + (" (%s)" % bad if bad else ""),
                                color=BAD_COLORS.get(bad), cluster=_box_of(node, level),
                                status=bad))
+    return vertices
 
+
+def _view_edges(mode: str, nodes, edges, groups) -> List[ViewEdge]:
+    """The drawn edges: labelled node -> node in the nodes mode, else between nodes and
+    topics; then each group's edges to and from the drawn nodes, once each."""
     if mode == "nodes":
         view_edges = [ViewEdge(node_id(e.start), node_id(e.end), e.label, "topic:" + e.label)
                       for e in edges]
@@ -443,129 +465,23 @@ def build_view(snapshot: GraphSnapshot, options: Optional[Options] = None) -> Vi
                        + [ViewEdge(node_id(name), node_id(e.end))
                           for e in outgoing if e.end in nodes])
         view_edges += [e for i, e in enumerate(group_edges) if e not in group_edges[:i]]
-    return View(mode, clusters, vertices, view_edges)
+    return view_edges
 
 
-# ------------------------------------------------------------------------ DOT
+def build_view(snapshot: GraphSnapshot, options: Optional[Options] = None) -> View:
+    """What rqt_graph draws for ``snapshot`` with ``options`` (default: rqt_graph's)."""
+    options = options or Options()
+    mode = check_mode(options.mode)
+    hide, group = options.hide, options.group
+    nodes, topics, edges = _selected(snapshot, mode, options)
+    nodes, topics, edges = _hide_debug_and_unreachable(snapshot, mode, hide, nodes, topics,
+                                                       edges)
+    groups = []  # (group name, incoming edges, outgoing edges, namespace box allowed)
+    if mode != "nodes":
+        topics, edges, groups = _hide_and_group_topics(topics, edges, hide, group)
+    topics, edges = _drop_unlinked(nodes, topics, edges)
 
-def _quoted(value) -> str:
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        return "%g" % value
-    return '"%s"' % str(value).replace("\\", "\\\\").replace('"', '\\"')
-
-
-def _attributes(pairs: Sequence[Tuple[str, object]]) -> str:
-    return "[%s]" % ", ".join("%s=%s" % (k, _quoted(v)) for k, v in pairs if v is not None)
-
-
-def _id(text: str) -> str:
-    return text if re.match(r"^[A-Za-z_][A-Za-z0-9_]*$", text) else _quoted(text)
-
-
-# graph attributes of rqt_graph's PydotFactory, for the graph and each namespace box
-_RANK = (("compound", "true"), ("rank", "same"), ("rankdir", "LR"), ("ranksep", 0.2),
-         ("simplify", "true"))
-
-
-def to_dot(view: View) -> str:
-    """rqt_graph's DOT text for ``view`` (lay it out with graphviz ``dot`` or ``xdot``)."""
-    lines = ["digraph graphname {",
-             "\tgraph %s;" % _attributes(_RANK + (("fontname", FONT_NAME),
-                                                   ("fontsize", FONT_SIZE))),
-             "\tnode %s;" % _attributes((("fontname", FONT_NAME), ("fontsize", FONT_SIZE))),
-             "\tedge %s;" % _attributes((("fontname", FONT_NAME), ("fontsize", FONT_SIZE)))]
-
-    def vertex_line(v: Vertex, indent: str) -> str:
-        return "%s%s %s;" % (indent, _id(v.id), _attributes(
-            (("label", v.label), ("shape", v.shape), ("URL", v.url), ("tooltip", v.url),
-             ("color", v.color))))
-
-    def box(namespace: str, indent: str) -> None:
-        lines.append("%ssubgraph %s {" % (indent, _id(dot_id("cluster_" + namespace))))
-        lines.append("%s\tgraph %s;" % (indent, _attributes(
-            (("label", namespace),) + _RANK + (("style", "bold"),))))
-        for child in view.clusters:
-            if child.rsplit("/", 1)[0] == namespace:
-                box(child, indent + "\t")
-        lines.extend(vertex_line(v, indent + "\t") for v in view.vertices
-                     if v.cluster == namespace)
-        lines.append("%s}" % indent)
-
-    for namespace in view.clusters:
-        if namespace.count("/") == 1:
-            box(namespace, "\t")
-    lines.extend(vertex_line(v, "\t") for v in view.vertices if v.cluster is None)
-    for edge in view.edges:
-        lines.append("\t%s -> %s %s;" % (_id(edge.start), _id(edge.end), _attributes(
-            (("label", edge.label or None), ("URL", edge.url or None), ("penwidth", 1)))))
-    lines.append("}")
-    return "\n".join(lines) + "\n"
-
-
-# ------------------------------------------------------------------------ text
-
-def _ranks(view: View) -> Dict[str, int]:
-    """Each vertex id's distance along the arrows from the sources of the graph (vertices
-    nothing points to), so that the text reads along the arrows. Where a cycle leaves no
-    source (every node subscribes /clock when nothing is hidden), the node with the fewest
-    incoming edges starts the count."""
-    into = {v.id: 0 for v in view.vertices}
-    for e in view.edges:
-        into[e.end] = into.get(e.end, 0) + 1
-    rank = {}  # type: Dict[str, int]
-    frontier = sorted(vid for vid, n in into.items() if n == 0)
-    base = 0
-    while True:
-        for vid in frontier:
-            rank[vid] = base
-        while frontier:
-            step = []
-            for e in view.edges:
-                if e.start in frontier and e.end not in rank:
-                    rank[e.end] = rank[e.start] + 1
-                    step.append(e.end)
-            frontier = step
-        left = [v for v in view.vertices if v.id not in rank]
-        if not left:
-            return rank
-        base = max(rank.values(), default=-1) + 1
-        frontier = [min(left, key=lambda v: (not v.is_node, into[v.id], v.label)).id]
-
-
-def to_text(view: View) -> str:
-    """The picture for a terminal: one line per connection (``/a --/topic--> /b`` in the
-    nodes mode, ``/a, /b --> [/topic] --> /c`` with topics), then the nodes drawn without
-    an edge. Unreachable nodes, when shown, carry "(DEAD)" or "(WONKY)"."""
-    by_id = {v.id: v for v in view.vertices}
-    rank = _ranks(view)
-    far = len(view.vertices) + 1
-
-    def name(vid: str) -> str:
-        v = by_id[vid]
-        return v.label + (" (%s)" % v.status if v.status else "")
-
-    def order(vid: str):
-        return (rank.get(vid, far), name(vid))
-
-    lines = []
-    if view.mode == "nodes":
-        for e in sorted(view.edges, key=lambda e: (order(e.start), e.label, order(e.end))):
-            lines.append("%s --%s--> %s" % (name(e.start), e.label, name(e.end)))
-    else:
-        for v in sorted((v for v in view.vertices if not v.is_node), key=lambda v: order(v.id)):
-            pubs = sorted({e.start for e in view.edges if e.end == v.id}, key=order)
-            subs = sorted({e.end for e in view.edges if e.start == v.id}, key=order)
-            line = "[%s]" % v.label
-            if pubs:
-                line = "%s --> %s" % (", ".join(name(p) for p in pubs), line)
-            if subs:
-                line = "%s --> %s" % (line, ", ".join(name(s) for s in subs))
-            lines.append(line)
-    linked = {e.start for e in view.edges} | {e.end for e in view.edges}
-    alone = sorted(name(v.id) for v in view.vertices if v.is_node and v.id not in linked)
-    lines.extend("%s   (no connection shown)" % n for n in alone)
-    nodes = sum(1 for v in view.vertices if v.is_node)
-    header = "%s: %d node%s, %d edge%s" % (MODE_TITLES[view.mode], nodes,
-                                            "" if nodes == 1 else "s", len(view.edges),
-                                            "" if len(view.edges) == 1 else "s")
-    return "\n".join([header] + ["  " + line for line in lines]) + "\n"
+    level = options.namespace_level if "namespaces" in group else 0
+    return View(mode, _clusters(nodes, topics, groups, level),
+                _vertices(snapshot, nodes, topics, groups, level),
+                _view_edges(mode, nodes, edges, groups))

@@ -110,7 +110,7 @@ class StageActorBody:
 
     def __init__(self, env_id: str, count: int, env_kwargs: Optional[dict] = None):
         import gymnasium
-        import tutorial_turtlebot.learning  # noqa: F401  (registers the stage ids)
+        importlib.import_module("tutorial_turtlebot.learning")  # registers the stage ids
 
         self.envs = [gymnasium.make(env_id, **(env_kwargs or {})) for _ in range(count)]
         self.stepper = NextStepAutoreset(self.envs)

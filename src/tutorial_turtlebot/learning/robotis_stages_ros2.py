@@ -39,9 +39,11 @@ from typing import List, NamedTuple, Optional, Sequence, Tuple
 import numpy as np
 
 from . import robotis_stages as rs
-# shared with noetic: the stages, the five actions, the obstacles' tick; and the step, one
-# scan period (ROBOTIS' ROS 2 agent has none: it asks again as soon as it has learnt)
-from .robotis_stages import ACTIONS, OBSTACLE_TICK, STAGES, STEP_TIME  # noqa: F401
+# shared with noetic: the stages, the five actions, the obstacles' tick; and the step,
+# rs.STEP_TIME, one scan period (ROBOTIS' ROS 2 agent has none: it asks again as soon as it
+# has learnt)
+from .robotis_stages import ACTIONS, OBSTACLE_TICK, STAGES
+REEXPORTED = (ACTIONS, STAGES)  # used as r2.ACTIONS and r2.STAGES by the tests
 
 SCAN_SAMPLES = 48           # rays of the scan; its front half gives the state's 24 ranges
 SCAN_MAX_ANGLE = 6.28       # rad: the last ray of turtlebot3_gazebo's LDS (the first at 0)

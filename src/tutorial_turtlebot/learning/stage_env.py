@@ -13,8 +13,8 @@ turtlebot3_gazebo's stage launch spawns it, with its laser at the 24 samples of 
   a goal reached gives its reward and the next goal, and the episode goes on. The command acts
   as it does over ROS: from the diff drive's first control tick after the scan (1/30 s later).
   ROBOTIS' respawner sleeps 0.5 s of wall time before it spawns the next goal, the robot
-  stopped; how much sim time that is depends on the sim's speed, so there is no pause here. Registered with a
-  TimeLimit of 501 steps, where turtlebot3_dqn ends an episode.
+  stopped; how much sim time that is depends on the sim's speed, so there is no pause here.
+  Registered with a TimeLimit of 501 steps, where turtlebot3_dqn ends an episode.
 - ``fix_pinned_collision``: ROBOTIS' collision test misses the -inf the laser reads below
   0.12 m, so a robot pressed against a wall is never flagged; True counts it (off by default).
 - ``time_step``: the physics step (s; 0.0025 by default, as the sim node's); coarser steps run

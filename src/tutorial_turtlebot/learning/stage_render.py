@@ -19,6 +19,7 @@ pixel (row, col) covers world x from ``left + col / scale`` and y down from
 display fails there, in one line), the view (made at the first frame), the window (tkinter and
 Pillow's ImageTk, imported only for "human"), or the robot's camera image instead.
 """
+import importlib
 import math
 import os
 import sys
@@ -273,8 +274,9 @@ def check_display(environ=os.environ) -> None:
         raise UserError("render_mode='human' needs a display and $DISPLAY is not set: use "
                         "render_mode='rgb_array', or run under xvfb-run")
     try:
-        import tkinter  # noqa: F401
-        from PIL import ImageTk  # noqa: F401
+        # whether they import, only: HumanWindow imports them again to use them
+        importlib.import_module("tkinter")
+        importlib.import_module("PIL.ImageTk")
     except ImportError as err:
         raise UserError("render_mode='human' needs tkinter and Pillow's ImageTk (Debian: "
                         "python3-tk python3-pil.imagetk): %s" % err) from None
@@ -335,8 +337,9 @@ class StageRender:
     def __init__(self, render_mode: Optional[str], render_camera: bool, model: str,
                  fps: float, title: str = "TurtleBot3 stage"):
         """``render_mode``: None, "rgb_array" or "human" (ValueError else; without a display,
-        human mode says so in one line on stderr and shows nothing); ``render_camera``: the robot's camera image instead of the top-down
-        picture (ValueError for a model without a camera)."""
+        human mode says so in one line on stderr and shows nothing); ``render_camera``: the
+        robot's camera image instead of the top-down picture (ValueError for a model without a
+        camera)."""
         if render_mode is not None and render_mode not in RENDER_MODES:
             raise ValueError("render_mode %r: the modes are None, %s"
                              % (render_mode, ", ".join(repr(m) for m in RENDER_MODES)))
@@ -370,8 +373,8 @@ class StageRender:
             warnings.warn("render() draws nothing with render_mode None: make the env with "
                           "render_mode='rgb_array' or 'human'", stacklevel=3)
             return None
-        image = robot.camera_image()[0] if self.camera else self.top_down(sim, robot, goal,
-                                                                            ranges)
+        image = (robot.camera_image()[0] if self.camera
+                 else self.top_down(sim, robot, goal, ranges))
         if self.mode == "rgb_array":
             return image
         if self.window is None:

@@ -31,6 +31,7 @@ concatenate the answers, and each core runs one worker flat out.
   the KeyboardInterrupt goes on. A worker's exception is raised here as a RuntimeError with
   its traceback, and ends the workers.
 """
+import importlib
 import multiprocessing
 import os
 import signal
@@ -61,7 +62,8 @@ def _worker(conn, parent_conn, env_id: str, count: int, env_kwargs: dict, same_s
         parent_conn.close()
     envs: List[gymnasium.Env] = []
     try:
-        from . import ENV_IDS   # noqa: F401  (registers the stages in a spawned process)
+        # importing the package registers the stages (in a spawned process too)
+        importlib.import_module("tutorial_turtlebot.learning")
         envs = [gymnasium.make(env_id, **env_kwargs) for _ in range(count)]
         conn.send(("ok", (envs[0].observation_space, envs[0].action_space)))
         done = np.zeros(count, dtype=bool)

@@ -62,3 +62,12 @@ def test_a_scan_leaves_at_once_with_everything_before_it():
     robot = object()
     sends.send_gathered(publish, [(robot, "scan")])  # within the gap, but a client waits for it
     assert connection.writes == [b"m", b"mm"]
+
+
+def test_the_backlogs_writes_are_the_loops_sending_time():
+    """The publishers' connections write through sends.backlog, timed as part_times' "sending"
+    (what make bench shows)."""
+    from tutorial_turtlebot.gazebo.part_times import TIMES
+    sends, parts = SendQueue(), []
+    assert sends.backlog.timed(lambda data: parts.append(TIMES.part) or True, b"m") is True
+    assert parts == ["sending"] and TIMES.part != "sending"

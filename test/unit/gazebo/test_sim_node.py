@@ -4,9 +4,10 @@ the world again with a one-line error, and one robot's output that fails is skip
 in one line while the others go on (both once ended the node)."""
 import pytest
 
-from tutorial_turtlebot.gazebo import robot_topics, sim_node
+from tutorial_turtlebot.errors import RequestError, UserError
+from tutorial_turtlebot.gazebo import robot_topics, sim_node, world_api
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.world.world_control import RequestError, WorldControl
+from tutorial_turtlebot.sim.world.world_control import WorldControl
 
 from unit_helpers import at, urdf_text
 
@@ -125,7 +126,7 @@ def test_the_start_logs_every_warning_through_rospy_in_lines_of_at_most_200_char
     monkeypatch.setattr(physics_module, "enable_egl", lambda cid: False)
     logged = []
     monkeypatch.setattr(sim_node.rospy, "logwarn", lambda text, *args: logged.append(
-        (text % args)[len("gazebo: "):]))
+        text % args))
     monkeypatch.setattr(sim_node.rospy, "loginfo", lambda *args: None)
     config = SimConfig(model="burger", world=str(world), x=-2.0, y=0.0)
     sim = Simulation(config)
@@ -168,3 +169,38 @@ def test_a_camera_frame_due_while_the_loop_is_late_is_skipped(node):
     assert len(drawn) == 2 and topics.frames_skipped == 2
     assert drawn[0] < drawn[1]                          # stamps of the first and last tick
     assert node.robot_topics["tb3"].pubs["odom"].sent > 0   # the rest goes on
+
+
+def test_a_request_error_is_a_user_error():
+    assert issubclass(RequestError, UserError)
+
+
+def test_the_world_api_answers_a_refusal_with_success_false_and_its_text(node):
+    """refusals_answered (every handler of world_api's service table): a RequestError is the
+    answer, success False and its text; anything else goes on to the caller (_answered)."""
+    from gazebo_msgs.srv import DeleteModel, GetLightProperties, SpawnModel
+    api = object.__new__(world_api.WorldApi)
+    api.node, api.sim, api.control = node, node.sim, node.control
+    answer = world_api.refusals_answered(DeleteModel, api._delete_model)(
+        DeleteModel._request_class(model_name="nothing"))
+    assert (answer.success, answer.status_message) == (False,
+                                                       "DeleteModel: model does not exist")
+    answer = world_api.refusals_answered(GetLightProperties, api._get_light_properties)(
+        GetLightProperties._request_class(light_name="moon"))
+    assert (answer.success, answer.status_message) == (
+        False, "getLightProperties: Requested light moon not found!")
+
+    def refused(_request):
+        raise RequestError("SpawnModel: Failure - entity already exists.")
+    answer = world_api.refusals_answered(SpawnModel, refused)(None)
+    assert (answer.success, answer.status_message) == (
+        False, "SpawnModel: Failure - entity already exists.")
+    with pytest.raises(ZeroDivisionError):
+        world_api.refusals_answered(SpawnModel, lambda _request: 1 / 0)(None)
+
+
+def test_a_spawned_models_warning_is_one_log_line_of_at_most_200_characters():
+    from tutorial_turtlebot.gazebo.world_api import spawn_warning
+    assert spawn_warning("crate", "x.dae: texture halved") == "spawn crate: x.dae: texture halved"
+    line = spawn_warning("m" * 256, "w" * 200)
+    assert len(line) == 200 and line.startswith("spawn " + "m" * 37 + "...: w")

@@ -182,7 +182,7 @@ def test_frame_rate_of_a_steady_stream_and_after_it_stops():
 
 
 def test_window_title():
-    rospy = pytest.importorskip("rospy")  # noqa: F841 - the node module imports it
+    pytest.importorskip("rospy")  # the node module imports it
     from tutorial_turtlebot.lab.image_view_node import image_topic, window_title
     assert window_title("/camera/rgb/image_raw", (640, 480, "rgb8"), 29.96) == \
         "/camera/rgb/image_raw  640x480 rgb8  30.0 fps"

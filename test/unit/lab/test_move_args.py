@@ -8,7 +8,7 @@ import pytest
 
 from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.lab.move_args import (USAGE, command_line_settings, parse, user_args,
-                                           wants_help)
+                                              wants_help)
 import unit_paths
 
 ROOT = unit_paths.ROOT

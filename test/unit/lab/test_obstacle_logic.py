@@ -105,10 +105,16 @@ def test_wander_turns_toward_the_more_open_side(convention):
 @pytest.mark.parametrize("convention", CONVENTIONS)
 def test_wander_keeps_turning_one_way_until_clear_with_hysteresis(convention):
     logic = Wander(stop_distance=0.5, clear_margin=0.1)
-    left_open = lambda b: 0.4 if b <= 0.3 else 3.0        # noqa: E731
+
+    def left_open(b):
+        return 0.4 if b <= 0.3 else 3.0
+
     assert logic.update(make_scan(convention, left_open)) == (0.0, 1.0)
+
     # Halfway through the turn the right looks more open: it keeps turning left (no dithering).
-    right_open = lambda b: 0.4 if b >= -0.3 else 3.0      # noqa: E731
+    def right_open(b):
+        return 0.4 if b >= -0.3 else 3.0
+
     assert logic.update(make_scan(convention, right_open)) == (0.0, 1.0)
     # Just past stop_distance is not clear enough ...
     assert logic.update(make_scan(convention, wall_ahead(0.55))) == (0.0, 1.0)
@@ -126,7 +132,8 @@ def test_wander_keeps_its_corridor_clear(convention):
     assert logic.update(make_scan(convention, post))[0] == 0.0
     # The same post 0.2 m to the left is out of the burger's way ...
     wide = points_world([(0.35, 0.2)], radius=0.01)
-    assert Wander(robot_radius=MODELS["burger"].turn_radius).update(make_scan(convention, wide))[0] > 0
+    burger = MODELS["burger"].turn_radius
+    assert Wander(robot_radius=burger).update(make_scan(convention, wide))[0] > 0
     # ... but not out of the waffle's.
     waffle = MODELS["waffle"].turn_radius
     assert Wander(robot_radius=waffle).update(make_scan(convention, wide))[0] == 0
@@ -136,7 +143,10 @@ def test_wander_keeps_its_corridor_clear(convention):
 def test_wander_ignores_junk_and_stops_for_too_close(convention):
     for junk in (INF, NAN, 0.0, 9.0):
         assert Wander().update(make_scan(convention, lambda b: junk)) == (0.2, 0.0)
-    too_close = lambda b: -INF if abs(b) < 0.05 else INF  # noqa: E731
+
+    def too_close(b):
+        return -INF if abs(b) < 0.05 else INF
+
     assert Wander().update(make_scan(convention, too_close))[0] == 0.0
 
 

@@ -1,7 +1,7 @@
-"""rqt_graph's picture without rqt (tutorial_turtlebot.lab.ros_graph): the DOT text of each
-mode for fixed graphs, what is hidden and grouped by default, the text picture, and the
-messages for a bad mode, output file or option. No master: graphs are built by hand as
-rosgraph.impl.graph.Graph would fill them."""
+"""rqt_graph's picture without rqt (tutorial_turtlebot.lab.ros_graph, written by
+lab.graph_output): the DOT text of each mode for fixed graphs, what is hidden and grouped by
+default, the text picture, and the messages for a bad mode, output file or option. No master:
+graphs are built by hand as rosgraph.impl.graph.Graph would fill them."""
 import os
 import shutil
 import subprocess
@@ -11,6 +11,7 @@ import pytest
 
 from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.lab import graph_node
+from tutorial_turtlebot.lab import graph_output
 from tutorial_turtlebot.lab import ros_graph as rg
 from tutorial_turtlebot.lab.ros_graph import DEAD, WONKY, Edge, Options, topic_vertex
 import unit_paths
@@ -110,11 +111,11 @@ URL="/turtlebot3_teleop_keyboard", tooltip="/turtlebot3_teleop_keyboard"];
 
 
 def dot_of(snap, **options):
-    return rg.to_dot(rg.build_view(snap, Options(**options)))
+    return graph_output.to_dot(rg.build_view(snap, Options(**options)))
 
 
 def text_of(snap, **options):
-    return rg.to_text(rg.build_view(snap, Options(**options)))
+    return graph_output.to_text(rg.build_view(snap, Options(**options)))
 
 
 def edges_of(snap, **options):
@@ -347,6 +348,30 @@ def test_namespace_level_and_the_nodes_mode():
     assert "box3d" not in nodes and "cluster___move_base" not in nodes
     assert ("\tn___explore -> n___move_base [label=\"/move_base/goal\", "
             "URL=\"topic:/move_base/goal\", penwidth=1];\n") in nodes
+
+
+def test_whole_view_of_a_small_graph():
+    """Every field of the view, through each step: filters, hiding, groups, boxes, edges."""
+    snap = snapshot_from({"/ns/a/chatter": ["/ns/talker"], "/rosout": ["/ns/talker"],
+                          "/tf": ["/ns/talker"]},
+                         {"/ns/a/chatter": ["/listener", "/dead"], "/tf": ["/listener"]},
+                         bad={"/dead": DEAD})
+    dead = rg.Vertex("n___dead", "/dead", "ellipse", "/dead (DEAD)", color="red",
+                     status=DEAD)
+    listener = rg.Vertex("n___listener", "/listener", "ellipse", "/listener")
+    talker = rg.Vertex("n___ns__talker", "/ns/talker", "ellipse", "/ns/talker", cluster="/ns")
+    view = rg.build_view(snap, Options(mode="active", hide=frozenset({"leaf-topics"})))
+    assert view == rg.View("active", ["/ns", "/ns/a"], [
+        rg.Vertex("t___ns__a__chatter", "/ns/a/chatter", "box", "topic:/ns/a/chatter",
+                  cluster="/ns/a"),
+        rg.Vertex("n___tf", "/tf", "box3d", "topic:/tf"), dead, listener, talker], [
+        rg.ViewEdge("t___ns__a__chatter", "n___listener"),
+        rg.ViewEdge("n___ns__talker", "t___ns__a__chatter"),
+        rg.ViewEdge("n___ns__talker", "n___tf"), rg.ViewEdge("n___tf", "n___listener")])
+    assert rg.build_view(snap, Options(hide=frozenset())) == rg.View("nodes", ["/ns"], [
+        dead, listener, talker], [
+        rg.ViewEdge("n___ns__talker", "n___listener", "/ns/a/chatter", "topic:/ns/a/chatter"),
+        rg.ViewEdge("n___ns__talker", "n___listener", "/tf", "topic:/tf")])
 
 
 def test_ids_follow_rqt_graph():

@@ -55,7 +55,7 @@ def test_index_at_picks_the_closest_ray(convention, degrees):
 def test_index_at_known_rays():
     lds = make_scan("lds01", lambda b: 1.0)
     assert [index_at(lds, math.radians(d)) for d in (0, 90, 180, 270, 359)] == [0, 90, 180, 270,
-                                                                                 359]
+                                                                                359]
     gazebo = make_scan("gazebo", lambda b: 1.0)
     # Gazebo's rays are 1.0028 degrees apart: 359 degrees is ray 358, not ray 359 (= 360.0).
     assert [index_at(gazebo, math.radians(d)) for d in (0, 90, 359)] == [0, 90, 358]

@@ -2,6 +2,7 @@
 1.x's NEXT_STEP autoreset, on scripted environments and beside learning/vector's, and
 StageActorBody (what one actor holds) on the real stage 1. No ROS, no Ray (the unit tests stay
 free of it: node_id, the one method that needs it, is not called)."""
+import importlib
 import inspect
 
 import numpy as np
@@ -9,7 +10,7 @@ import pytest
 
 gymnasium = pytest.importorskip("gymnasium")   # tools/setup.sh installs it
 
-import tutorial_turtlebot.learning  # noqa: E402,F401  (registers the ids)
+importlib.import_module("tutorial_turtlebot.learning")   # registers the ids
 from tutorial_turtlebot.learning import vector  # noqa: E402
 from tutorial_turtlebot.learning.ray_actors import (  # noqa: E402
     AUTORESET_MODE, NextStepAutoreset, StageActorBody)

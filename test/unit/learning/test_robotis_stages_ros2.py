@@ -99,8 +99,8 @@ def test_obstacle_reward_by_hand():
     # ahead at 0.25 (decay 0.97044553, weight cos(0)^6 + 0.1 = 1.1) and left at 0.5
     # (decay exp(-0.75) = 0.47236655, weight 0.1): (1.06749008 + 0.04723666) / 1.2
     # = 0.92893895; -(1 + 4 * 0.92893895)
-    assert r2.obstacle_reward([0.25, 0.5], [0.0, math.pi / 2]) == pytest.approx(-4.71575580,
-                                                                               abs=1e-8)
+    assert (r2.obstacle_reward([0.25, 0.5], [0.0, math.pi / 2])
+            == pytest.approx(-4.71575580, abs=1e-8))
     # ahead at 0.4 (decay exp(-0.45) = 0.63762815, weight 1.1) and 45 degrees right at 0.3
     # (decay 0.86070798, weight cos(pi/4)^6 + 0.1 = 0.225): (0.70139097 + 0.19365929) / 1.325
     # = 0.67550963; -(1 + 4 * 0.67550963)

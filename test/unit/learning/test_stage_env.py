@@ -1,6 +1,7 @@
 """The learning stages as Gymnasium environments (learning/stage_env) on the real simulator: the
 registered ids, Gymnasium's own checker, seeds, goals, collisions and the obstacles. No ROS.
 Units: m, rad, s of sim time."""
+import importlib
 import math
 import random
 
@@ -9,7 +10,7 @@ import pytest
 
 gymnasium = pytest.importorskip("gymnasium")   # tools/setup.sh installs it; the error says so
 
-import tutorial_turtlebot.learning  # noqa: E402,F401  (registers the ids)
+importlib.import_module("tutorial_turtlebot.learning")   # registers the ids
 from tutorial_turtlebot.learning import robotis_stages as rs  # noqa: E402
 from tutorial_turtlebot.learning.stage_env import StageEnv  # noqa: E402
 

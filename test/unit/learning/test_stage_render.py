@@ -2,6 +2,7 @@
 picture's mapping and what it shows where (the robot, its heading, the goal, the laser's rays,
 the moving obstacles), Gymnasium's checks, the human window under Xvfb, the camera option.
 No ROS. Units: m, rad; pixels as (col, row), row 0 at the top."""
+import importlib
 import json
 import math
 import os
@@ -15,7 +16,7 @@ import pytest
 
 gymnasium = pytest.importorskip("gymnasium")   # tools/setup.sh installs it
 
-import tutorial_turtlebot.learning  # noqa: E402,F401  (registers the ids)
+importlib.import_module("tutorial_turtlebot.learning")   # registers the ids
 from tutorial_turtlebot.learning import robotis_stages as rs  # noqa: E402
 from tutorial_turtlebot.learning import stage_render as sr  # noqa: E402
 from tutorial_turtlebot.learning.stage_env import StageEnv  # noqa: E402

@@ -1,6 +1,7 @@
 """The learning stages' vector environment (learning/vector): its spaces, seeds, both autoreset
 modes, a worker's error, and that close() (or a Ctrl-C before it) leaves no process behind.
 Real workers on the real simulator; no ROS."""
+import importlib
 import os
 import signal
 import sys
@@ -10,7 +11,7 @@ import pytest
 
 gymnasium = pytest.importorskip("gymnasium")   # tools/setup.sh installs it; the error says so
 
-import tutorial_turtlebot.learning  # noqa: E402,F401  (registers the ids)
+importlib.import_module("tutorial_turtlebot.learning")   # registers the ids
 from tutorial_turtlebot.learning import robotis_stages as rs  # noqa: E402
 from tutorial_turtlebot.learning.vector import make_vector_env  # noqa: E402
 

@@ -26,7 +26,8 @@ def catkin_lint():
 
 
 def packages(base):
-    nested = sorted(os.path.dirname(p) for p in glob.glob(os.path.join(ROOT, "*", "*", "package.xml")))
+    nested = sorted(os.path.dirname(p)
+                    for p in glob.glob(os.path.join(ROOT, "*", "*", "package.xml")))
     return [base] + [os.path.join(base, os.path.relpath(p, ROOT)) for p in nested]
 
 

@@ -123,7 +123,7 @@ def documented_topics():
     """The topics doc/gazebo_node.md lists, as global names (~x is /gazebo/x)."""
     topics = {"/rosout", "/rosout_agg", "/tf_static"}
     for names, _ in wiki_items(read("doc/gazebo_node.md"), ("Published Topics",
-                                                             "Subscribed Topics")):
+                                                            "Subscribed Topics")):
         for name in names:
             topics.add("/gazebo/" + name[1:] if name.startswith("~") else
                        name if name.startswith("/") else "/" + name)

@@ -3,7 +3,8 @@
 Scans the repository's own text (README.md, CHANGELOG.rst, doc/, src/, scripts/, launch/, urdf/,
 worlds/, test/, tools/, bench/, ...) for:
 
-- paths from the repository's root (``doc/lab.md``, ``src/tutorial_turtlebot/sim/devices/camera.py``),
+- paths from the repository's root (``doc/lab.md``,
+  ``src/tutorial_turtlebot/sim/devices/camera.py``),
 - Markdown links (``[text](lab.md)``), relative to the page,
 - bare ``*.md`` / ``*.rst`` file names and ``see FOO.py``,
 - dotted module names (``tutorial_turtlebot.lab.graph_node``),
@@ -34,7 +35,8 @@ SCANNED_SUFFIXES = (".py", ".md", ".rst", ".launch", ".test", ".urdf", ".world",
 SCANNED_NAMES = ("Makefile", "CMakeLists.txt", "package.xml", "run")
 # A relative path that may climb out of the folder it is written in.
 UP_PATH = re.compile(r"(?<![\w.])((?:\.\./)+[\w./-]*[\w/])")
-ISSUE = re.compile(r"\b[Ii]ssues?\s*#?\d+|\(issue\b|\bissue\s+#|(?<![\w/])#\d+\b(?!\s*[-:]?\s*\w*\s*\])")
+ISSUE = re.compile(r"\b[Ii]ssues?\s*#?\d+|\(issue\b|\bissue\s+#"
+                   r"|(?<![\w/])#\d+\b(?!\s*[-:]?\s*\w*\s*\])")
 ROOT_PATH = re.compile(r"(?<![\w/.$@{:-])((?:%s)/[\w./-]*[\w/])" % "|".join(ROOT_DIRS))
 MD_LINK = re.compile(r"\]\(([^)\s]+)\)")
 BARE_DOC = re.compile(r"(?<![\w/.-])([\w-]+\.(?:md|rst))\b")
@@ -218,7 +220,8 @@ GOOD = {
     "doc/turtlebot3.md": "# Ref\n## 4. Worlds\n### 4.2 The arena\n",
     "src/tutorial_turtlebot/__init__.py": "",
     "src/tutorial_turtlebot/sim/__init__.py": "",
-    "src/tutorial_turtlebot/sim/devices/camera.py": '"""See doc/turtlebot3.md 4.2 and 4 and lab.md."""\n',
+    "src/tutorial_turtlebot/sim/devices/camera.py":
+        '"""See doc/turtlebot3.md 4.2 and 4 and lab.md."""\n',
 }
 
 

@@ -16,10 +16,11 @@ import re
 
 import pytest
 
+import unit_paths
+
 genmsg = pytest.importorskip("genmsg", reason="python3-genmsg is not installed")
 from genmsg import msg_loader  # noqa: E402
 from genmsg.gentools import compute_md5  # noqa: E402
-import unit_paths
 
 PKG_DIR = os.path.join(unit_paths.ROOT, "msgs", "gazebo_msgs")
 DEPENDENCIES = ("std_msgs", "geometry_msgs", "trajectory_msgs")
@@ -102,7 +103,8 @@ def _definition_dirs():
             except rospkg.ResourceNotFound:
                 pass
         candidates += [os.path.join(r, pkg) for r in ("/opt/ros/noetic/share", "/usr/share")]
-        found = [os.path.join(c, "msg") for c in candidates if os.path.isdir(os.path.join(c, "msg"))]
+        found = [os.path.join(c, "msg") for c in candidates
+                 if os.path.isdir(os.path.join(c, "msg"))]
         if not found:
             pytest.skip("the %s message definitions are not installed" % pkg)
         paths[pkg] = found[:1]

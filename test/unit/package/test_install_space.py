@@ -95,7 +95,8 @@ def install(tmp):
             os.symlink(os.path.join(ROOT, parent, name), os.path.join(src, name))
     prefix = os.path.join(tmp, "ws", "install")
     build = clean_bash(
-        'catkin_make -C "$1" -DPYTHON_EXECUTABLE="$2/bin/python3" -DPython_EXECUTABLE="$2/bin/python3" '
+        'catkin_make -C "$1" -DPYTHON_EXECUTABLE="$2/bin/python3" '
+        '-DPython_EXECUTABLE="$2/bin/python3" '
         '-DTUTORIAL_TURTLEBOT_VENV="$2" '
         '-DCATKIN_ENABLE_TESTING=OFF -DCMAKE_INSTALL_PREFIX="$3" install',
         os.path.join(tmp, "ws"), venv_link, prefix, timeout=600)
@@ -148,7 +149,7 @@ def test_without_a_venv_sim_says_in_one_line_what_is_missing(moved):
                      'rosrun tutorial_turtlebot sim', moved, timeout=60)
     assert run.returncode not in (0, 90), run.stdout + run.stderr
     (python,) = [line[len("python3: "):] for line in run.stdout.splitlines()
-                  if line.startswith("python3: ")]
+                 if line.startswith("python3: ")]
     assert "venv" not in python
     probe = subprocess.run([python, "-c", "import pybullet"],
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -32,7 +32,7 @@ def is_stdlib(name):
     origin = spec.origin or ""
     stdlib = sysconfig.get_paths()["stdlib"]
     return origin in ("built-in", "frozen") or (origin.startswith(stdlib)
-                                                 and "-packages" not in origin)
+                                                and "-packages" not in origin)
 
 
 def python_files():

@@ -78,6 +78,28 @@ def test_a_second_run_builds_nothing():
     assert "building catkin workspace" not in second.stdout
 
 
+def workspace_digest(ws):
+    """tools/setup.sh's workspace_inputs for the workspace ``ws`` (the function alone, run)."""
+    script = ('eval "$(sed -n \'/^workspace_inputs() {/,/^}/p\' "$SETUP")"; '
+              'workspace_inputs "-DX=1"')
+    out = subprocess.run(["bash", "-c", script], capture_output=True, text=True, check=True,
+                         env=dict(os.environ, SETUP=SETUP, WS=str(ws), ROOT=ROOT))
+    return out.stdout.strip()
+
+
+def test_the_build_stamp_ignores_the_cmakelists_catkin_make_writes(tmp_path):
+    """A fresh workspace's first build makes the source folder's CMakeLists.txt: the digest
+    taken before it must equal the next run's, or the next run builds once more. A new package
+    in src/ still changes it."""
+    (tmp_path / "src").mkdir()
+    (tmp_path / "src" / "tutorial_turtlebot").symlink_to(ROOT)
+    before = workspace_digest(tmp_path)
+    (tmp_path / "src" / "CMakeLists.txt").symlink_to("/usr/share/catkin/cmake/toplevel.cmake")
+    assert workspace_digest(tmp_path) == before
+    (tmp_path / "src" / "other_package").mkdir()
+    assert workspace_digest(tmp_path) != before
+
+
 @once
 def test_a_changed_build_file_builds_again(tmp_path):
     """The stamp covers what catkin_make reads: a new rostest file (globbed by CMakeLists.txt)."""

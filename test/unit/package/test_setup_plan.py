@@ -13,9 +13,11 @@ ROOT = unit_paths.ROOT
 SCRIPT = os.path.join(ROOT, "tools", "setup_plan.py")
 SETUP_SH = os.path.join(ROOT, "tools", "setup.sh")
 MESHES_XACRO = ("trimesh>=4,<6", "pycollada>=0.8", "charset-normalizer>=3,<4", "xacro==1.13.3",
-                "catkin-lint==1.6.25", "gymnasium>=1.0,<2")
+                "catkin-lint==1.6.25", "gymnasium>=1.0,<2", "pycodestyle==2.12.1",
+                "pyflakes==3.2.0")
 MESHES_XACRO_PY38 = ("trimesh>=4,<5", "pycollada>=0.8,<0.9", "charset-normalizer>=3,<4",
-                     "xacro==1.13.3", "catkin-lint==1.6.25", "gymnasium>=1.0,<2")
+                     "xacro==1.13.3", "catkin-lint==1.6.25", "gymnasium>=1.0,<2",
+                     "pycodestyle==2.12.1", "pyflakes==3.2.0")
 
 _spec = importlib.util.spec_from_file_location("setup_plan", SCRIPT)
 setup_plan = importlib.util.module_from_spec(_spec)
@@ -82,7 +84,7 @@ def refusal(*args, **kwargs):
     return message
 
 
-# --- the platforms ----------------------------------------------------------------------------------
+# --- the platforms --------------------------------------------------------------------------------
 
 def test_debian_12_uses_debians_ros_and_the_pybullet_wheel():
     plan = make_plan(DEBIAN_12, noetic=False, python=(3, 11))
@@ -121,7 +123,8 @@ def test_debian_13_builds_pybullet_from_source_with_numpy():
 def test_debian_testing_without_version_id_is_newer_than_12():
     plan = make_plan(DEBIAN_SID, noetic=False, python=(3, 12))
     assert plan.ros == "distro" and plan.pybullet_from == "source"
-    assert make_plan(DEBIAN_SID.replace("trixie", "sid"), noetic=False, python=(3, 12)).ros == "distro"
+    assert make_plan(DEBIAN_SID.replace("trixie", "sid"), noetic=False,
+                     python=(3, 12)).ros == "distro"
 
 
 def test_ubuntu_2004_with_noetic_uses_noetics_packages_and_python_38_pins():
@@ -203,7 +206,8 @@ def test_no_wheel_off_x86_64():
 
 
 def test_the_venv_stamp_changes_with_the_plan():
-    stamps = {make_plan(DEBIAN_12, False, (3, 11)).stamp, make_plan(DEBIAN_13, False, (3, 13)).stamp,
+    stamps = {make_plan(DEBIAN_12, False, (3, 11)).stamp,
+              make_plan(DEBIAN_13, False, (3, 13)).stamp,
               make_plan(UBUNTU_2004, True, (3, 8)).stamp}
     assert len(stamps) == 3
 
@@ -239,7 +243,7 @@ def test_py38_plan_skips_with_a_reason():
     assert exe == "" and "3.8 already" in reason
 
 
-# --- the command line and setup.sh -----------------------------------------------------------------
+# --- the command line and setup.sh ----------------------------------------------------------------
 
 def run_plan(tmp_path, os_release, *args):
     path = tmp_path / "os-release"
@@ -257,9 +261,11 @@ def test_shell_output_evaluates_in_bash(tmp_path):
         ["bash", "-c", 'set -eu; eval "$1"; printf "%s\\n" "$PLAN_ROS_SETUP" "$PLAN_PIP" '
          '"$PLAN_GAZEBO_MSGS" "$PLAN_PLATFORM"', "bash", run.stdout],
         stdout=subprocess.PIPE, universal_newlines=True, timeout=60).stdout.splitlines()
-    assert shown == ["/opt/ros/noetic/setup.bash", "pybullet==3.2.7 numpy>=1.23,<1.25 trimesh>=4,<5 pycollada>=0.8,<0.9 "
+    assert shown == ["/opt/ros/noetic/setup.bash",
+                     "pybullet==3.2.7 numpy>=1.23,<1.25 trimesh>=4,<5 pycollada>=0.8,<0.9 "
                      "charset-normalizer>=3,<4 xacro==1.13.3 catkin-lint==1.6.25 "
-                     "gymnasium>=1.0,<2 pytest>=6.2 Pillow>=7.1",
+                     "gymnasium>=1.0,<2 pycodestyle==2.12.1 pyflakes==3.2.0 pytest>=6.2 "
+                     "Pillow>=7.1",
                      "system", "Ubuntu 20.04 LTS with ROS Noetic (/opt/ros/noetic)"]
     # a name with a quote survives the round trip
     run = run_plan(tmp_path, 'ID=debian\nVERSION_ID=12\nPRETTY_NAME="Bob\'s Debian 12"\n',
@@ -309,7 +315,7 @@ def test_setup_sh_refuses_before_installing_anything(tmp_path):
     assert not trace.exists(), trace.read_text()
 
 
-# --- what Debian 13 needs that Debian 12 pulled in by itself ---------------------------------------
+# --- what Debian 13 needs that Debian 12 pulled in by itself --------------------------------------
 
 def test_debian_12_and_13_install_ros_environment_and_xauth():
     # ros-environment's catkin hook sets ROS_PACKAGE_PATH (rospack, roslaunch find nothing

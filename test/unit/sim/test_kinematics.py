@@ -6,7 +6,7 @@ import pybullet
 import pytest
 
 from tutorial_turtlebot.sim.kinematics import (cross_2d, quat_from_yaw, rotation_matrix, to_body,
-                                           wrap_angle, yaw_from_quat)
+                                               wrap_angle, yaw_from_quat)
 
 YAWS = (0.0, 0.3, -0.3, math.pi / 2, -math.pi / 2, 2.5, -2.5, math.pi - 1e-9)
 
@@ -98,4 +98,4 @@ def test_cross_2d_element_wise_on_arrays_of_x_then_y():
     columns = cross_2d(o.T, a.T, b.T)
     assert columns.tolist() == [cross_2d(*p) for p in zip(o.tolist(), a.tolist(), b.tolist())]
     assert cross_2d(o.T, a.T, b[0]).tolist() == [cross_2d(p, q, b[0].tolist())
-                                                  for p, q in zip(o.tolist(), a.tolist())]
+                                                 for p, q in zip(o.tolist(), a.tolist())]

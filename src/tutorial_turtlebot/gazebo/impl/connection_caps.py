@@ -114,8 +114,8 @@ class ConnectionCaps:
         """None and a reservation (end it with service_done), or why the caller is refused."""
         with self._lock:
             if self.services.get(service, 0) >= self.per_service:
-                return "%s has %d open connections, the most it takes" % (service,
-                                                                         self.per_service)
+                return ("%s has %d open connections, the most it takes"
+                        % (service, self.per_service))
             if self._inbound() >= self.total:
                 return "%d connections are open, the most the sim takes" % self.total
             self.services[service] = self.services.get(service, 0) + 1

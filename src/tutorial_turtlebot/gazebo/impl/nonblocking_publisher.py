@@ -25,18 +25,20 @@ a stalled subscriber that cannot take it loses it whole.
 ``publisher.publish_packed(packed)`` sends a kept serialization (packed_messages) as rospy's
 ``publish`` would send the message: numbered with the publisher's sequence, to every
 subscriber, without genpy or rospy's buffer.
+
+``Backlog(timed)``: every write of its connections runs as ``timed(write, data)`` (the node
+passes its timing recorder, which counts the write as its loop's "sending" time); without it
+the write runs directly.
 """
 import collections
 import errno
 import math
 import socket
 import threading
-from typing import Optional
+from typing import Callable, Optional
 
 from rospy.core import is_shutdown
 from rospy.exceptions import TransportTerminated
-
-from ..part_times import TIMES
 
 _GONE = (errno.EPIPE, errno.ECONNRESET, errno.ENOTCONN, errno.EBADF)
 
@@ -44,7 +46,10 @@ _GONE = (errno.EPIPE, errno.ECONNRESET, errno.ENOTCONN, errno.EBADF)
 class Backlog:
     """The connections holding bytes they could not send yet."""
 
-    def __init__(self):
+    def __init__(self, timed: Optional[Callable] = None):
+        """``timed``: None, or ``timed(write, data)`` that runs ``write(data)`` and returns what
+        it returned (around every write of this backlog's connections: the node times them)."""
+        self.timed = timed
         self._lock = threading.Lock()
         self._waiting = set()
         self.held = None  # [(connection, bytes)] while holding, else None
@@ -116,7 +121,10 @@ class NonBlockingConnection:
     def write_data(self, data: bytes) -> bool:
         """Send one serialized message or keep it for later; never blocks. Raises
         TransportTerminated once the subscriber has gone (rospy then drops the connection)."""
-        return TIMES.run("sending", self._write, data)
+        timed = self._backlog.timed
+        if timed is None:
+            return self._write(data)
+        return timed(self._write, data)
 
     def _write(self, data: bytes) -> bool:
         held = self._backlog.held

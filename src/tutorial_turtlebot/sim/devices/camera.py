@@ -14,7 +14,7 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..files.robot_plugins import CameraSpec
+from ..files.robot_plugin_types import CameraSpec
 
 try:  # Debian/Ubuntu python3-pil, PyPI Pillow
     from PIL import Image as _PilImage

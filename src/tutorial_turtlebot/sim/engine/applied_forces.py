@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from typing import Callable, Dict, List, Optional, Tuple
 
 from .bullet import pybullet
+from .client import Client
 
 Vector3 = Tuple[float, float, float]
 
@@ -66,17 +67,17 @@ class Weightless:
     mass: float
 
 
-def _com(body: int, index: int, cid: int):
+def _com(body: int, index: int, client: Client):
     """World position of a link's centre of mass (pybullet's link frame is the inertial one)."""
     if index < 0:
-        return pybullet.getBasePositionAndOrientation(body, physicsClientId=cid)[0]
-    return pybullet.getLinkState(body, index, physicsClientId=cid)[0]
+        return client.getBasePositionAndOrientation(body)[0]
+    return client.getLinkState(body, index)[0]
 
 
 class AppliedForces:
     """The active wrenches, efforts and weightless links of one pybullet client."""
 
-    def __init__(self, client: int, gravity: Callable[[], Vector3]):
+    def __init__(self, client: Client, gravity: Callable[[], Vector3]):
         """``gravity()`` gives the world's gravity now (m/s^2); it can change at run time."""
         self.client = client
         self.gravity = gravity
@@ -135,7 +136,7 @@ class AppliedForces:
 
     def apply(self, now_ns: int) -> None:
         """Apply what acts during the step that starts at ``now_ns``; drop what has ended."""
-        cid = self.client
+        client = self.client
         world = pybullet.WORLD_FRAME
         if self.wrenches:
             if any(w.end_ns is not None and now_ns >= w.end_ns for w in self.wrenches):
@@ -143,11 +144,9 @@ class AppliedForces:
                                  if w.end_ns is None or now_ns < w.end_ns]
             for w in self.wrenches:
                 if w.start_ns <= now_ns:
-                    pybullet.applyExternalForce(w.body, w.index, w.force,
-                                                _com(w.body, w.index, cid), world,
-                                                physicsClientId=cid)
-                    pybullet.applyExternalTorque(w.body, w.index, w.torque, world,
-                                                 physicsClientId=cid)
+                    client.applyExternalForce(w.body, w.index, w.force,
+                                              _com(w.body, w.index, client), world)
+                    client.applyExternalTorque(w.body, w.index, w.torque, world)
         if self.efforts:
             if any(e.end_ns is not None and now_ns >= e.end_ns for e in self.efforts):
                 self.efforts = [e for e in self.efforts if e.end_ns is None or now_ns < e.end_ns]
@@ -157,13 +156,12 @@ class AppliedForces:
                     key = (e.body, e.index)
                     totals[key] = totals.get(key, 0.0) + e.effort
             for (body, index), effort in totals.items():
-                pybullet.setJointMotorControl2(body, index, pybullet.TORQUE_CONTROL,
-                                               force=effort, physicsClientId=cid)
+                client.setJointMotorControl2(body, index, pybullet.TORQUE_CONTROL,
+                                             force=effort)
         if self.weightless:
             gx, gy, gz = self.gravity()
             for w in self.weightless.values():
-                pybullet.applyExternalForce(w.body, w.index,
-                                            (-w.mass * gx, -w.mass * gy, -w.mass * gz),
-                                            _com(w.body, w.index, cid), world,
-                                            physicsClientId=cid)
+                client.applyExternalForce(w.body, w.index,
+                                          (-w.mass * gx, -w.mass * gy, -w.mass * gz),
+                                          _com(w.body, w.index, client), world)
         self._update()

@@ -1,7 +1,7 @@
 """A pybullet body as the world above the engine sees it: poses, twists, links and joints.
 
-``Body`` is a handle (client id, body id) whose methods are the only pybullet calls the world
-(world_models, world_control) needs; equal handles name the same body. Poses are
+``Body`` is a handle (engine.client.Client, body id) whose methods are the only pybullet calls
+the world (world_models, world_control) needs; equal handles name the same body. Poses are
 ((x, y, z), (qx, qy, qz, qw)) in the world frame; twists ((vx, vy, vz), (wx, wy, wz)) in m/s and
 rad/s, world frame. A link index of -1 is the base, whose frame is the body's centre of mass;
 a jointed link's index is its joint's.
@@ -11,6 +11,7 @@ from typing import List, NamedTuple, Tuple
 
 from . import collision_filters
 from .bullet import pybullet
+from .client import Client
 
 Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]
 Twist = Tuple[Tuple[float, float, float], Tuple[float, float, float]]
@@ -45,11 +46,11 @@ class Inertial(NamedTuple):
 
 
 class Body:
-    """One pybullet body of client ``client``, body id ``uid``."""
+    """One pybullet body of ``client``, body id ``uid``."""
 
     __slots__ = ("client", "uid")
 
-    def __init__(self, client: int, uid: int):
+    def __init__(self, client: Client, uid: int):
         self.client = client
         self.uid = uid
 
@@ -60,58 +61,57 @@ class Body:
         return hash((self.client, self.uid))
 
     def __repr__(self) -> str:
-        return "Body(%d, %d)" % (self.client, self.uid)
+        return "Body(%d, %d)" % (self.client.id, self.uid)
 
     # --- the base --------------------------------------------------------------------------------
 
     def pose(self) -> Pose:
         """World pose of the base (the centre of mass of a movable body)."""
-        pos, orn = pybullet.getBasePositionAndOrientation(self.uid, physicsClientId=self.client)
+        pos, orn = self.client.getBasePositionAndOrientation(self.uid)
         return tuple(pos), tuple(orn)
 
     def twist(self) -> Twist:
         """World twist of the base."""
-        lin, ang = pybullet.getBaseVelocity(self.uid, physicsClientId=self.client)
+        lin, ang = self.client.getBaseVelocity(self.uid)
         return tuple(lin), tuple(ang)
 
     def set_pose(self, pose: Pose) -> None:
-        pybullet.resetBasePositionAndOrientation(self.uid, pose[0], pose[1],
-                                                 physicsClientId=self.client)
+        self.client.resetBasePositionAndOrientation(self.uid, pose[0], pose[1])
 
     def set_twist(self, twist: Twist) -> None:
-        pybullet.resetBaseVelocity(self.uid, twist[0], twist[1], physicsClientId=self.client)
+        self.client.resetBaseVelocity(self.uid, twist[0], twist[1])
 
     def root_link(self) -> str:
         """The name of the URDF's root link (of a body loaded from a URDF)."""
-        return pybullet.getBodyInfo(self.uid, physicsClientId=self.client)[0].decode()
+        return self.client.getBodyInfo(self.uid)[0].decode()
 
     def com_in_root(self) -> Pose:
         """The base's frame (centre of mass, principal axes) in the root link's frame."""
-        info = pybullet.getDynamicsInfo(self.uid, -1, physicsClientId=self.client)
+        info = self.client.getDynamicsInfo(self.uid, -1)
         return tuple(info[3]), tuple(info[4])
 
     # --- links and joints ------------------------------------------------------------------------
 
     def joints(self) -> List[Joint]:
         """Every joint, in index order (fixed ones too: a multibody's links)."""
-        cid = self.client
+        client = self.client
         out = []
-        for j in range(pybullet.getNumJoints(self.uid, physicsClientId=cid)):
-            info = pybullet.getJointInfo(self.uid, j, physicsClientId=cid)
+        for j in range(client.getNumJoints(self.uid)):
+            info = client.getJointInfo(self.uid, j)
             out.append(Joint(j, info[1].decode(), JOINT_KINDS.get(info[2], "revolute"),
                              float(info[6]), info[12].decode()))
         return out
 
     def joint_count(self) -> int:
-        return pybullet.getNumJoints(self.uid, physicsClientId=self.client)
+        return self.client.getNumJoints(self.uid)
 
     def joint_state(self, index: int) -> Tuple[float, float]:
         """(position rad or m, rate rad/s or m/s) of joint ``index``."""
-        position, rate = pybullet.getJointState(self.uid, index, physicsClientId=self.client)[:2]
+        position, rate = self.client.getJointState(self.uid, index)[:2]
         return position, rate
 
     def set_joint(self, index: int, position: float, rate: float = 0.0) -> None:
-        pybullet.resetJointState(self.uid, index, position, rate, physicsClientId=self.client)
+        self.client.resetJointState(self.uid, index, position, rate)
 
     def zero_joints(self) -> None:
         """Every joint at 0, at rest."""
@@ -120,24 +120,23 @@ class Body:
 
     def link_frame(self, index: int) -> Tuple[Pose, Twist]:
         """World pose of jointed link ``index``'s URDF frame, and the twist of that link."""
-        state = pybullet.getLinkState(self.uid, index, computeLinkVelocity=1,
-                                      physicsClientId=self.client)
+        state = self.client.getLinkState(self.uid, index, computeLinkVelocity=1)
         return ((tuple(state[4]), tuple(state[5])), (tuple(state[6]), tuple(state[7])))
 
     def link_com(self, index: int) -> Tuple[float, float, float]:
         """World position of the centre of mass of link ``index`` (-1: the base)."""
         if index < 0:
             return self.pose()[0]
-        return tuple(pybullet.getLinkState(self.uid, index, physicsClientId=self.client)[0])
+        return tuple(self.client.getLinkState(self.uid, index)[0])
 
     def finite(self) -> bool:
         """Whether the base's pose and twist and every joint's state are finite numbers."""
-        cid = self.client
-        pos, orn = pybullet.getBasePositionAndOrientation(self.uid, physicsClientId=cid)
-        lin, ang = pybullet.getBaseVelocity(self.uid, physicsClientId=cid)
+        client = self.client
+        pos, orn = client.getBasePositionAndOrientation(self.uid)
+        lin, ang = client.getBaseVelocity(self.uid)
         values = list(pos) + list(orn) + list(lin) + list(ang)
-        joints = range(pybullet.getNumJoints(self.uid, physicsClientId=cid))
-        for state in pybullet.getJointStates(self.uid, joints, physicsClientId=cid) or ():
+        joints = range(client.getNumJoints(self.uid))
+        for state in client.getJointStates(self.uid, joints) or ():
             values.extend(state[:2])
         return all(math.isfinite(v) for v in values)
 
@@ -146,25 +145,23 @@ class Body:
     def inertial(self, index: int) -> Inertial:
         """Link ``index``'s mass, centre of mass (a jointed link: in its URDF frame) and
         principal moments."""
-        info = pybullet.getDynamicsInfo(self.uid, index, physicsClientId=self.client)
+        info = self.client.getDynamicsInfo(self.uid, index)
         com = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)) if index < 0 \
             else (tuple(info[3]), tuple(info[4]))
         return Inertial(float(info[0]), com, tuple(float(v) for v in info[2]))
 
     def set_inertial(self, index: int, mass: float, moments: Tuple[float, float, float]) -> None:
         """Link ``index``'s mass (kg) and principal moments (kg m^2, its inertia axes)."""
-        pybullet.changeDynamics(self.uid, index, mass=float(mass),
-                                localInertiaDiagonal=tuple(float(v) for v in moments),
-                                physicsClientId=self.client)
+        self.client.changeDynamics(self.uid, index, mass=float(mass),
+                                   localInertiaDiagonal=tuple(float(v) for v in moments))
 
     def limit_joint_rate(self, index: int, rate: float) -> None:
         """At most ``rate`` (rad/s or m/s) at joint ``index``."""
-        pybullet.changeDynamics(self.uid, index, maxJointVelocity=rate,
-                                physicsClientId=self.client)
+        self.client.changeDynamics(self.uid, index, maxJointVelocity=rate)
 
     # --- lifecycle -------------------------------------------------------------------------------
 
     def remove(self) -> None:
         """Take the body out of the physics for good."""
-        pybullet.removeBody(self.uid, physicsClientId=self.client)
+        self.client.removeBody(self.uid)
         collision_filters.forget_body(self.client, self.uid)

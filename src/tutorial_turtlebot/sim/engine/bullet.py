@@ -46,4 +46,5 @@ def quiet_output():
 
 
 with quiet_output():
-    import pybullet  # noqa: E402,F401  (re-exported)
+    import pybullet  # noqa: E402
+REEXPORTED = (pybullet,)  # imported from here by the engine's modules, quietly imported once

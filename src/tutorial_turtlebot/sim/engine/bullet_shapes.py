@@ -12,8 +12,9 @@ new shape is refused with ShapeBudgetError and the sim goes on with the shapes i
 
 A shape is keyed by every argument given to pybullet, mesh files by the digest of their
 content (the files written for a mesh are new each time, their content is not). Shapes are
-shared in the clients ``track``ed, from their connection to ``forget_client`` (WorldPhysics
-does both); in another client each call builds a new shape.
+shared in the clients ``track``ed (kept on the client: ``Client.shapes``), from their
+connection to ``forget_client`` (WorldPhysics does both); in another client each call builds a
+new shape.
 """
 import hashlib
 import os
@@ -23,6 +24,7 @@ import numpy as np
 
 from ...errors import WorldError
 from .bullet import pybullet
+from .client import Client
 
 MAX_SHAPE_BYTES = 512 * 1024 * 1024   # estimated memory of the distinct shapes of one client
 PRIMITIVE_BYTES = 5 * 1024            # a box, sphere, cylinder or plane
@@ -40,42 +42,39 @@ class _ClientShapes:
         self.bytes = 0
 
 
-_clients: Dict[int, _ClientShapes] = {}
+def collision_shape(client: Client, shape_type: int, **kwargs) -> int:
+    """``pybullet.createCollisionShape(shape_type, **kwargs)`` in ``client``, or the id of the
+    same shape built before."""
+    return _shared(client, "one", (shape_type,), kwargs)
 
 
-def collision_shape(client_id: int, shape_type: int, **kwargs) -> int:
-    """``pybullet.createCollisionShape(shape_type, **kwargs)`` in ``client_id``, or the id of
-    the same shape built before."""
-    return _shared(client_id, "one", (shape_type,), kwargs)
-
-
-def collision_shape_array(client_id: int, **kwargs) -> int:
-    """``pybullet.createCollisionShapeArray(**kwargs)`` in ``client_id``, or the id of the same
+def collision_shape_array(client: Client, **kwargs) -> int:
+    """``pybullet.createCollisionShapeArray(**kwargs)`` in ``client``, or the id of the same
     compound built before."""
-    return _shared(client_id, "array", (), kwargs)
+    return _shared(client, "array", (), kwargs)
 
 
-def track(client_id: int) -> None:
-    """Share shapes in ``client_id``, newly connected, from now on."""
-    _clients[client_id] = _ClientShapes()
+def track(client: Client) -> None:
+    """Share shapes in ``client``, newly connected, from now on (``client.shapes``)."""
+    client.shapes = _ClientShapes()
 
 
-def forget_client(client_id: int) -> None:
-    """The client was disconnected (its id may be given to a new one)."""
-    _clients.pop(client_id, None)
+def forget_client(client: Client) -> None:
+    """The client was disconnected."""
+    client.shapes = None
 
 
-def shape_bytes(client_id: int) -> int:
-    """The estimated memory (bytes) of the distinct shapes built in ``client_id``."""
-    shapes = _clients.get(client_id)
+def shape_bytes(client: Client) -> int:
+    """The estimated memory (bytes) of the distinct shapes built in ``client``."""
+    shapes = client.shapes
     return shapes.bytes if shapes is not None else 0
 
 
-def _shared(client_id: int, how: str, args: tuple, kwargs: dict) -> int:
-    make = pybullet.createCollisionShape if how == "one" else pybullet.createCollisionShapeArray
-    shapes = _clients.get(client_id)
-    if shapes is None:   # not tracked: a client id may be reused by a new client unseen
-        return make(*args, physicsClientId=client_id, **kwargs)
+def _shared(client: Client, how: str, args: tuple, kwargs: dict) -> int:
+    make = client.createCollisionShape if how == "one" else client.createCollisionShapeArray
+    shapes = client.shapes
+    if shapes is None:   # not tracked: each call builds a new shape
+        return make(*args, **kwargs)
     key = (how,) + args + tuple(sorted((name, _content(name, value))
                                        for name, value in kwargs.items()))
     found = shapes.ids.get(key)
@@ -88,7 +87,7 @@ def _shared(client_id: int, how: str, args: tuple, kwargs: dict) -> int:
             "of them: a new one of %.1f MB is refused (at most %d MB; shapes built before can "
             "be spawned again; restart the simulation to start afresh)"
             % (shapes.bytes >> 20, cost / 2 ** 20, MAX_SHAPE_BYTES >> 20))
-    shape = make(*args, physicsClientId=client_id, **kwargs)
+    shape = make(*args, **kwargs)
     if shape >= 0:
         shapes.ids[key] = shape
         shapes.bytes += cost

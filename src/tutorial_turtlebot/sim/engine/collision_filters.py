@@ -17,48 +17,46 @@ the body pool), and a body's removal is told with ``forget_body``. A collider's 
 from collections import OrderedDict
 from typing import Dict, Tuple
 
-from .bullet import pybullet
+from .client import Client
 
 Collider = Tuple[int, int]     # (body id, link index; -1 for the base)
 
-_clients: Dict[int, "OrderedDict[Collider, Tuple[int, int]]"] = {}
+
+def track(client: Client) -> None:
+    """Keep the filters of ``client``, newly connected, from now on (``client.filters``)."""
+    client.filters = OrderedDict()
 
 
-def track(client_id: int) -> None:
-    """Keep the filters of ``client_id``, newly connected, from now on."""
-    _clients[client_id] = OrderedDict()
+def forget_client(client: Client) -> None:
+    """``client`` is disconnected."""
+    client.filters = None
 
 
-def forget_client(client_id: int) -> None:
-    """``client_id`` is disconnected."""
-    _clients.pop(client_id, None)
-
-
-def set_filter(client_id: int, body: int, link: int, group: int, mask: int) -> None:
+def set_filter(client: Client, body: int, link: int, group: int, mask: int) -> None:
     """Give collider (``body``, ``link``) the collision ``group`` and ``mask`` (pybullet's
     setCollisionFilterGroupMask, which also drops the collider's contacts), and remember it:
     a collider keeps the place of the first filter it was given."""
-    pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=client_id)
-    filters = _clients.get(client_id)
+    client.setCollisionFilterGroupMask(body, link, group, mask)
+    filters = client.filters
     if filters is not None:
         filters[(body, link)] = (group, mask)
 
 
-def forget_body(client_id: int, body: int) -> None:
-    """``body`` was removed from ``client_id``: its colliders are gone."""
-    filters = _clients.get(client_id)
+def forget_body(client: Client, body: int) -> None:
+    """``body`` was removed from ``client``: its colliders are gone."""
+    filters = client.filters
     if filters is not None:
         for collider in [c for c in filters if c[0] == body]:
             del filters[collider]
 
 
-def renew_contacts(client_id: int) -> None:
-    """Drop every contact of ``client_id``: each collider gets its filter again, in the order of
+def renew_contacts(client: Client) -> None:
+    """Drop every contact of ``client``: each collider gets its filter again, in the order of
     their first filters (the broadphase's entries then stand in the order of a new world)."""
-    for (body, link), (group, mask) in _clients.get(client_id, {}).items():
-        pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=client_id)
+    for (body, link), (group, mask) in (client.filters or {}).items():
+        client.setCollisionFilterGroupMask(body, link, group, mask)
 
 
-def colliders(client_id: int) -> Dict[Collider, Tuple[int, int]]:
-    """collider -> (group, mask) of ``client_id``, in renewal order (a copy)."""
-    return OrderedDict(_clients.get(client_id, {}))
+def colliders(client: Client) -> Dict[Collider, Tuple[int, int]]:
+    """collider -> (group, mask) of ``client``, in renewal order (a copy)."""
+    return OrderedDict(client.filters or {})

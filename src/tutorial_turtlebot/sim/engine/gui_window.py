@@ -2,9 +2,10 @@
 pybullet's debug panels and camera previews, and without its start-up chatter in the terminal."""
 import math
 import time
-from typing import Sequence
+from typing import Optional, Sequence
 
 from .bullet import pybullet, quiet_output
+from .client import Client
 
 WINDOW = "--width=1024 --height=768"
 HELLO, HELLOS = b"ven = ", 2   # what the window's thread prints, and how often, as it starts
@@ -15,15 +16,14 @@ _PANELS = ("COV_ENABLE_GUI", "COV_ENABLE_RGB_BUFFER_PREVIEW", "COV_ENABLE_DEPTH_
            "COV_ENABLE_SEGMENTATION_MARK_PREVIEW")
 
 
-def open_window() -> int:
-    """Connect pybullet with its window (the caller checks that a display exists); the client
-    id, negative when the window could not open."""
+def open_window() -> Optional[Client]:
+    """Connect pybullet with its window (the caller checks that a display exists); the client,
+    None when the window could not open."""
     with quiet_output() as printed:
-        client = pybullet.connect(pybullet.GUI, options=WINDOW)
-        if client >= 0:
+        client = Client.connect(pybullet.GUI, options=WINDOW)
+        if client is not None:
             for panel in _PANELS:
-                pybullet.configureDebugVisualizer(getattr(pybullet, panel), 0,
-                                                  physicsClientId=client)
+                client.configureDebugVisualizer(getattr(pybullet, panel), 0)
             # The window's thread says hello ("ven = Mesa/X.org") at each of its first two
             # frames, after connect returns (0.1 to 0.2 s later here, later on a busy machine):
             # its output stays silenced until it has.
@@ -33,9 +33,9 @@ def open_window() -> int:
     return client
 
 
-def look_at(client: int, position: Sequence[float], yaw: float) -> None:
+def look_at(client: Client, position: Sequence[float], yaw: float) -> None:
     """Point the window's camera at ``position`` (m, world) from behind a robot heading ``yaw``
     (rad, counter-clockwise from +x)."""
-    pybullet.resetDebugVisualizerCamera(
+    client.resetDebugVisualizerCamera(
         cameraDistance=VIEW_DISTANCE, cameraYaw=math.degrees(yaw) - 90.0,
-        cameraPitch=VIEW_PITCH, cameraTargetPosition=list(position), physicsClientId=client)
+        cameraPitch=VIEW_PITCH, cameraTargetPosition=list(position))

@@ -17,7 +17,7 @@ import importlib.util
 import math
 import subprocess
 import sys
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -25,8 +25,9 @@ from ...errors import UserError
 from ..files import limits
 from . import texture_budget
 from .bullet import pybullet, quiet_output
+from .client import Client
 from . import view_culling
-from ..files.robot_plugins import CameraSpec
+from ..files.robot_plugin_types import CameraSpec
 
 # pybullet's OpenGL renderers read images from a buffer of this size (EGL: 1024 x 768).
 OPENGL_BUFFER = (1024, 768)
@@ -74,30 +75,25 @@ def validate_spec(spec: CameraSpec) -> None:
         raise UserError("camera update rate %r Hz must be a positive number" % (spec.rate,))
 
 
-
 # --- the EGL plugin ------------------------------------------------------------------------------
 
 _PROBE = r"""
 import sys
 import numpy as np
 import pybullet as p
-cid = p.connect(p.DIRECT)
-if p.loadPlugin(sys.argv[1], "_eglRendererPlugin", physicsClientId=cid) < 0:
+p.connect(p.DIRECT)    # the process's only client: every call below is to it
+if p.loadPlugin(sys.argv[1], "_eglRendererPlugin") < 0:
     sys.exit(3)
-box = p.createVisualShape(p.GEOM_BOX, halfExtents=(1, 1, 1), rgbaColor=(0, 1, 0, 1),
-                          physicsClientId=cid)
-p.createMultiBody(0, -1, box, basePosition=(3, 0, 0), physicsClientId=cid)
+box = p.createVisualShape(p.GEOM_BOX, halfExtents=(1, 1, 1), rgbaColor=(0, 1, 0, 1))
+p.createMultiBody(0, -1, box, basePosition=(3, 0, 0))
 view = p.computeViewMatrix((0, 0, 0), (1, 0, 0), (0, 0, 1))
 proj = p.computeProjectionMatrixFOV(60, 1, 0.1, 10)
-rgba = p.getCameraImage(8, 8, view, proj, renderer=p.ER_BULLET_HARDWARE_OPENGL,
-                        physicsClientId=cid)[2]
+rgba = p.getCameraImage(8, 8, view, proj, renderer=p.ER_BULLET_HARDWARE_OPENGL)[2]
 r, g, b = np.asarray(rgba, dtype=np.uint8).reshape(8, 8, 4)[4, 4, :3].astype(int)
 sys.exit(0 if g > 100 and r < 60 and b < 60 else 4)
 """
 
 _egl_works: Optional[bool] = None     # the probe's answer, once per process
-_egl_plugins: Dict[int, int] = {}     # client id -> plugin id
-_textured_clients = set()             # client ids with a textured visual (note_textures)
 
 
 def egl_plugin_path() -> Optional[str]:
@@ -131,13 +127,13 @@ def egl_available() -> bool:
     return _egl_works
 
 
-def enable_egl(client_id: int) -> bool:
-    """Load the EGL renderer into pybullet client ``client_id``; True if it is in use.
+def enable_egl(client: Client) -> bool:
+    """Load the EGL renderer into pybullet ``client``; True if it is in use.
 
     Call it right after ``pybullet.connect`` (DIRECT) and before any body is created: the
     plugin draws only the bodies created after it. Never raises; False means TinyRenderer.
     Loading it again into the same client is harmless (pybullet keeps one). Call
-    ``disable_egl`` before ``pybullet.disconnect``: client ids are reused. The plugin prints
+    ``disable_egl`` before disconnecting. The plugin prints
     a few lines (GL vendor, version) straight to file descriptor 1 when it loads, and
     "ven = <GL vendor>" at each of its first two images (each makes a render target): it is
     loaded and draws two empty 1 x 1 images here, with what they print silenced.
@@ -146,45 +142,42 @@ def enable_egl(client_id: int) -> bool:
         return False
     with quiet_output():
         try:
-            plugin = pybullet.loadPlugin(egl_plugin_path(), "_eglRendererPlugin",
-                                         physicsClientId=client_id)
+            plugin = client.loadPlugin(egl_plugin_path(), "_eglRendererPlugin")
         except pybullet.error:
             return False
         if plugin < 0:
             return False
         for _ in range(EGL_CHATTY_IMAGES):
-            pybullet.getCameraImage(1, 1, renderer=pybullet.ER_BULLET_HARDWARE_OPENGL,
-                                    flags=pybullet.ER_NO_SEGMENTATION_MASK,
-                                    physicsClientId=client_id)
-    _egl_plugins[client_id] = plugin
+            client.getCameraImage(1, 1, renderer=pybullet.ER_BULLET_HARDWARE_OPENGL,
+                                  flags=pybullet.ER_NO_SEGMENTATION_MASK)
+    client.egl_plugin = plugin
     return True
 
 
-def disable_egl(client_id: int) -> None:
-    """Unload the EGL plugin of ``client_id`` (before ``pybullet.disconnect``); no-op without.
-    Also forgets ``note_textures``, texture_budget and view_culling of that client (its id may
-    be reused)."""
-    _textured_clients.discard(client_id)
-    texture_budget.forget(client_id)
-    view_culling.forget(client_id)
-    plugin = _egl_plugins.pop(client_id, None)
+def disable_egl(client: Client) -> None:
+    """Unload the EGL plugin of ``client`` (before it is disconnected); no-op without. Also
+    forgets ``note_textures``, texture_budget and view_culling of that client."""
+    client.textured = False
+    texture_budget.forget(client)
+    view_culling.forget(client)
+    plugin, client.egl_plugin = client.egl_plugin, None
     if plugin is not None:
         try:
-            pybullet.unloadPlugin(plugin, physicsClientId=client_id)
+            client.unloadPlugin(plugin)
         except pybullet.error:
             pass    # the client is already gone, and the plugin with it
 
 
-def note_textures(client_id: int) -> None:
-    """Say that client ``client_id`` has (or may have) a textured visual: its OpenGL images
-    are drawn by the shader that maps textures by their coordinates from then on (see
-    CameraRenderer). Until ``disable_egl`` of that client."""
-    _textured_clients.add(client_id)
+def note_textures(client: Client) -> None:
+    """Say that ``client`` has (or may have) a textured visual: its OpenGL images are drawn by
+    the shader that maps textures by their coordinates from then on (see CameraRenderer).
+    Until ``disable_egl`` of that client."""
+    client.textured = True
 
 
-def egl_enabled(client_id: int) -> bool:
-    """Whether ``enable_egl`` loaded the plugin into ``client_id``."""
-    return client_id in _egl_plugins
+def egl_enabled(client: Client) -> bool:
+    """Whether ``enable_egl`` loaded the plugin into ``client``."""
+    return client.egl_plugin is not None
 
 
 # --- rendering -----------------------------------------------------------------------------------
@@ -202,7 +195,7 @@ def view_matrix(position: Vector, rotation) -> List[float]:
 
 
 class CameraRenderer:
-    """Renders one camera (``spec``) in pybullet client ``client_id``.
+    """Renders one camera (``spec``) in pybullet ``client``.
 
     ``use_egl``: pybullet's hardware OpenGL renderer (the EGL plugin, or the window of a GUI
     client); otherwise TinyRenderer. Where the EGL plugin is loaded it renders every request
@@ -214,7 +207,7 @@ class CameraRenderer:
     stays the same: view_culling.)
     """
 
-    def __init__(self, client_id: int, spec: CameraSpec, use_egl: bool,
+    def __init__(self, client: Client, spec: CameraSpec, use_egl: bool,
                  background: Tuple[int, int, int] = BACKGROUND_RGB, skip_shadows: bool = True):
         """``skip_shadows`` (OpenGL only): draw through pybullet's projective-texture shader,
         which has no shadow-map pass: 2 to 10 times faster on Mesa, and no shadow artefacts. It
@@ -224,7 +217,7 @@ class CameraRenderer:
         ``shadow=0`` (measured, Mesa, 640 x 480 in turtlebot3_world: 35 ms an image instead of
         12). TinyRenderer maps textures by their coordinates either way."""
         validate_spec(spec)
-        self.client = client_id
+        self.client = client
         self.spec = spec
         self.use_egl = bool(use_egl)
         self.background = np.array(background, dtype=np.uint8)
@@ -232,7 +225,7 @@ class CameraRenderer:
                                               dtype=np.uint32)[0]
         self._renderer = (pybullet.ER_BULLET_HARDWARE_OPENGL if self.use_egl
                           else pybullet.ER_TINY_RENDERER)
-        opengl = self.use_egl or egl_enabled(client_id)
+        opengl = self.use_egl or egl_enabled(client)
         if opengl:
             self._tiles = _tiles(spec, *OPENGL_BUFFER)
         else:  # TinyRenderer samples each pixel at its corner: move the frustum half a pixel
@@ -241,10 +234,10 @@ class CameraRenderer:
         # With the shadow-map shader (a textured client) the static bodies out of view are left
         # out of an EGL image (view_culling). Public: None draws every body (the bench's figure
         # of the cost without it).
-        self.view_culling = (view_culling.ViewCulling(client_id, spec.hfov,
+        self.view_culling = (view_culling.ViewCulling(client, spec.hfov,
                                                       spec.height / spec.width, spec.near,
                                                       spec.far, LIGHT_DIRECTION)
-                             if egl_enabled(client_id) else None)
+                             if egl_enabled(client) else None)
 
     @property
     def renderer_name(self) -> str:
@@ -287,7 +280,7 @@ class CameraRenderer:
     def _left_out(self, position, rotation):
         """The context an image is drawn in: with the shadow-map shader (EGL, a textured
         client), the fixed bodies it cannot show are left out (view_culling); else nothing."""
-        projective = self._projective and self.client not in _textured_clients
+        projective = self._projective and not self.client.textured
         if self.view_culling is None or projective:
             return contextlib.nullcontext()
         return self.view_culling.hidden_outside(position, rotation)
@@ -298,14 +291,14 @@ class CameraRenderer:
         width, height = c1 - c0, r1 - r0
         flags = pybullet.ER_NO_SEGMENTATION_MASK
         extra = {}
-        if self._projective and self.client not in _textured_clients:
+        if self._projective and not self.client.textured:
             flags |= pybullet.ER_USE_PROJECTIVE_TEXTURE
             extra = {"projectiveTextureView": view, "projectiveTextureProj": projection}
-        _, _, rgba, zbuffer, _ = pybullet.getCameraImage(
+        _, _, rgba, zbuffer, _ = self.client.getCameraImage(
             width, height, view, projection,
             lightDirection=LIGHT_DIRECTION, shadow=0, lightAmbientCoeff=LIGHT_AMBIENT,
             lightDiffuseCoeff=LIGHT_DIFFUSE, lightSpecularCoeff=LIGHT_SPECULAR,
-            renderer=self._renderer, flags=flags, physicsClientId=self.client, **extra)
+            renderer=self._renderer, flags=flags, **extra)
         rgba = np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)
         zbuffer = np.asarray(zbuffer, dtype=np.float32).reshape(height, width)
         if not rgba.flags.writeable:

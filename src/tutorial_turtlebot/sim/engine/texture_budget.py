@@ -9,7 +9,8 @@ rounded up, again and again until the set fits or every image is down to
 texture_images.MIN_HALVED_SIDE px a side. Images of models spawned later are halved the same way
 to fit what is left; the images already drawn keep their size.
 
-Units: pixels. State is kept per client id until ``forget`` (rendering.disable_egl calls it).
+Units: pixels. State is kept on the client (``Client.texture_plan``) until ``forget``
+(rendering.disable_egl calls it).
 """
 import heapq
 import os
@@ -17,6 +18,7 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 
 from ..files.texture_images import MIN_HALVED_SIDE, halved_size
+from .client import Client
 
 # px: 64 M px of images (about 256 MB as decoded RGBA, a third more with their mipmaps).
 MAX_TEXTURE_PIXELS = 64 * 1024 * 1024
@@ -48,18 +50,17 @@ class _Client:
         return pixels * (use.visuals if self.per_visual else 1)
 
 
-_clients: Dict[int, _Client] = {}
-
-
-def plan(client_id: int, uses: Dict[str, TextureUse], per_visual: bool,
+def plan(client: Client, uses: Dict[str, TextureUse], per_visual: bool,
          budget: Optional[int] = None) -> Optional[str]:
-    """Take the texture images ``uses`` (sha256 -> use) of new visuals of client ``client_id``
+    """Take the texture images ``uses`` (sha256 -> use) of new visuals of ``client``
     and decide how many times each new image is halved (``halvings`` answers); ``per_visual``:
     the client's renderer keeps a copy per visual (TinyRenderer). ``budget``: px, default
     MAX_TEXTURE_PIXELS. Returns one line (at most 200 characters) when an image was halved or
     the budget could not be met; else None."""
     budget = MAX_TEXTURE_PIXELS if budget is None else budget
-    state = _clients.setdefault(client_id, _Client(per_visual))
+    state = client.texture_plan
+    if state is None:
+        state = client.texture_plan = _Client(per_visual)
     new: List[str] = []
     for digest, use in uses.items():
         if digest in state.uses:
@@ -100,24 +101,24 @@ def _pixels(count: int) -> str:
     return "%.0f Mpx" % (count / 2 ** 20) if count >= 2 ** 20 else "%d px" % count
 
 
-def halvings(client_id: int, digest: str, use: TextureUse, per_visual: bool) -> int:
-    """How many times the image of sha256 ``digest`` is halved in client ``client_id``; an
-    image no ``plan`` took yet is planned alone, with ``use``."""
-    state = _clients.get(client_id)
+def halvings(client: Client, digest: str, use: TextureUse, per_visual: bool) -> int:
+    """How many times the image of sha256 ``digest`` is halved in ``client``; an image no
+    ``plan`` took yet is planned alone, with ``use``."""
+    state = client.texture_plan
     if state is None or digest not in state.halvings:
-        plan(client_id, {digest: use}, per_visual)
-        state = _clients[client_id]
+        plan(client, {digest: use}, per_visual)
+        state = client.texture_plan
     return state.halvings[digest]
 
 
-def halved_images(client_id: int) -> Dict[str, Tuple[int, int]]:
-    """{sha256: (width, height) px as drawn} of the images of client ``client_id``."""
-    state = _clients.get(client_id)
+def halved_images(client: Client) -> Dict[str, Tuple[int, int]]:
+    """{sha256: (width, height) px as drawn} of the images of ``client``."""
+    state = client.texture_plan
     if state is None:
         return {}
     return {d: halved_size(u.width, u.height, state.halvings[d]) for d, u in state.uses.items()}
 
 
-def forget(client_id: int) -> None:
-    """Forget the textures of client ``client_id`` (its id may be reused)."""
-    _clients.pop(client_id, None)
+def forget(client: Client) -> None:
+    """Forget the textures of ``client``."""
+    client.texture_plan = None

@@ -15,6 +15,7 @@ from ..files.urdf_meshes import textured_urdf
 from . import collision_filters
 from .bodies import Body
 from .bullet import pybullet, quiet_output
+from .client import Client
 from .world_bullet import MOVABLE_COLLISION_GROUP, MOVABLE_COLLISION_MASK
 from .rendering import note_textures
 
@@ -22,8 +23,8 @@ URDF_FLAGS = (pybullet.URDF_MERGE_FIXED_LINKS | pybullet.URDF_USE_INERTIA_FROM_F
               | pybullet.URDF_USE_IMPLICIT_CYLINDER)
 
 
-def load_urdf(client: int, urdf: str) -> int:
-    """A new body of URDF text ``urdf`` in pybullet client ``client`` (its root link at the
+def load_urdf(client: Client, urdf: str) -> int:
+    """A new body of URDF text ``urdf`` in pybullet ``client`` (its root link at the
     origin): the body id. UserError (one line) when pybullet cannot load it. A URDF with a
     textured mesh makes the client's cameras draw textures from then on."""
     if textured_urdf(urdf):
@@ -34,14 +35,14 @@ def load_urdf(client: int, urdf: str) -> int:
             f.write(urdf)
         try:
             with quiet_output():   # the importer's notes go straight to the terminal
-                return pybullet.loadURDF(path, flags=URDF_FLAGS, physicsClientId=client)
+                return client.loadURDF(path, flags=URDF_FLAGS)
         except pybullet.error as err:
             raise UserError("pybullet could not load the URDF: %s" % err) from None
     finally:
         os.unlink(path)
 
 
-def load_movable(client: int, urdf: str) -> Body:
+def load_movable(client: Client, urdf: str) -> Body:
     """``load_urdf`` of a spawned model without robot plugins, set up as Gazebo moves one: it
     collides with the world, the robots and other movable models, slides with friction 1, has
     no damping, never sleeps, and its joints turn freely but for their URDF <dynamics friction>
@@ -51,18 +52,16 @@ def load_movable(client: int, urdf: str) -> Body:
     return Body(client, body)
 
 
-def setup_movable(client: int, body: int) -> None:
+def setup_movable(client: Client, body: int) -> None:
     """The set-up of ``load_movable``, of a body already loaded (or taken from the pool)."""
-    for link in range(-1, pybullet.getNumJoints(body, physicsClientId=client)):
+    for link in range(-1, client.getNumJoints(body)):
         collision_filters.set_filter(client, body, link, MOVABLE_COLLISION_GROUP,
                                      MOVABLE_COLLISION_MASK)
-        pybullet.changeDynamics(body, link, linearDamping=0.0, angularDamping=0.0,  # none in Gazebo
-                                activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
-                                physicsClientId=client)
+        client.changeDynamics(body, link, linearDamping=0.0, angularDamping=0.0,  # none in Gazebo
+                              activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING)
         # a call of its own: with the arguments above pybullet drops the friction of a jointed
         # link (it stays at its default 0.5)
-        pybullet.changeDynamics(body, link, lateralFriction=1.0, physicsClientId=client)
+        client.changeDynamics(body, link, lateralFriction=1.0)
         if link >= 0:   # the URDF's <dynamics friction> (N m or N) holds it, as Gazebo's
-            friction = pybullet.getJointInfo(body, link, physicsClientId=client)[7]
-            pybullet.setJointMotorControl2(body, link, pybullet.VELOCITY_CONTROL,
-                                           force=friction, physicsClientId=client)
+            friction = client.getJointInfo(body, link)[7]
+            client.setJointMotorControl2(body, link, pybullet.VELOCITY_CONTROL, force=friction)

@@ -28,7 +28,7 @@ Units: metres, radians; poses in the world frame.
 import contextlib
 import math
 import os
-from typing import Dict, Hashable, Iterable, Iterator, List, Optional, Sequence, Tuple
+from typing import Hashable, Iterable, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -36,6 +36,7 @@ from ...errors import UserError
 from ..files.mesh_file import load_mesh
 from ..files.world_types import Shape
 from .bullet import pybullet
+from .client import Client
 
 Bounds = Tuple[np.ndarray, np.ndarray]   # (lowest corner, highest corner), 3 floats each
 USER_DATA_KEY = "tutorial_turtlebot.view_culling"
@@ -53,9 +54,6 @@ class _Noted:
         self.bounds = bounds        # in the body's base frame; None: never left out
         self.groups = groups        # the visual_group of each of its visuals
         self.rgba = rgba            # (link, colour) of each link, as built
-
-
-_noted: Dict[int, Dict[int, _Noted]] = {}    # client id -> body id -> _Noted
 
 
 def visual_group(shape: Shape) -> Hashable:
@@ -100,46 +98,46 @@ def shape_bounds(shape: Shape) -> Optional[Bounds]:
     return None
 
 
-def note_static_body(client_id: int, body: int, shape: Shape) -> None:
+def note_static_body(client: Client, body: int, shape: Shape) -> None:
     """``body`` (fixed, its base frame the shape's frame) draws ``shape``: it may be left out
     of an image that cannot show it. A shape drawn with alpha below 1 never is."""
-    links = _link_colours(client_id, body)
+    links = _link_colours(client, body)
     bounds = shape_bounds(shape) if all(rgba[3] >= 1.0 for _, rgba in links) else None
     if bounds is not None and not all(np.all(np.isfinite(b)) for b in bounds):
         bounds = None
-    _note(client_id, body, bounds, (visual_group(shape),), links)
+    _note(client, body, bounds, (visual_group(shape),), links)
 
 
-def note_drawn_groups(client_id: int, body: int, shapes: Iterable[Shape]) -> None:
+def note_drawn_groups(client: Client, body: int, shapes: Iterable[Shape]) -> None:
     """``body`` (a movable one) draws ``shapes``: never left out, nor is any body of their
     visual groups."""
-    _note(client_id, body, None, tuple(visual_group(s) for s in shapes),
-          _link_colours(client_id, body))
+    _note(client, body, None, tuple(visual_group(s) for s in shapes),
+          _link_colours(client, body))
 
 
-def forget(client_id: int) -> None:
-    """Forget what was noted of client ``client_id`` (before it is disconnected)."""
-    _noted.pop(client_id, None)
+def forget(client: Client) -> None:
+    """Forget what was noted of ``client`` (before it is disconnected)."""
+    client.view_noted = {}
 
 
-def _link_colours(client_id: int, body: int) -> Tuple:
+def _link_colours(client: Client, body: int) -> Tuple:
     """(link, rgba) of each link's first visual (pybullet gives colours right even for the
     visuals it draws from another's shape)."""
     colours = {}
-    for visual in pybullet.getVisualShapeData(body, physicsClientId=client_id):
+    for visual in client.getVisualShapeData(body):
         colours.setdefault(visual[1], tuple(visual[7]))
     return tuple(colours.items())
 
 
-def _note(client_id: int, body: int, bounds, groups, links) -> None:
-    tag = pybullet.addUserData(body, USER_DATA_KEY, "1", physicsClientId=client_id)
-    _noted.setdefault(client_id, {})[body] = _Noted(body, tag, bounds, groups, links)
+def _note(client: Client, body: int, bounds, groups, links) -> None:
+    tag = client.addUserData(body, USER_DATA_KEY, "1")
+    client.view_noted[body] = _Noted(body, tag, bounds, groups, links)
 
 
-def _tag(client_id: int, body: int) -> int:
+def _tag(client: Client, body: int) -> int:
     """The id of ``body``'s view_culling user data; -1 if it has none or is gone."""
     try:
-        return pybullet.getUserDataId(body, USER_DATA_KEY, physicsClientId=client_id)
+        return client.getUserDataId(body, USER_DATA_KEY)
     except pybullet.error:
         return -1
 
@@ -189,12 +187,12 @@ def with_shadows(lows: np.ndarray, highs: np.ndarray, towards_light: Sequence[fl
 
 
 class ViewCulling:
-    """Hides, for one image at a time, the noted static bodies of client ``client_id`` that a
-    camera (``hfov`` rad, ``aspect`` height / width, clip ``near``..``far`` m) cannot see."""
+    """Hides, for one image at a time, the noted static bodies of ``client`` that a camera
+    (``hfov`` rad, ``aspect`` height / width, clip ``near``..``far`` m) cannot see."""
 
-    def __init__(self, client_id: int, hfov: float, aspect: float, near: float, far: float,
+    def __init__(self, client: Client, hfov: float, aspect: float, near: float, far: float,
                  towards_light: Sequence[float]):
-        self.client = client_id
+        self.client = client
         self.hfov, self.aspect, self.near, self.far = hfov, aspect, near, far
         self.towards_light = tuple(towards_light)
         self.hidden_bodies = frozenset()   # the body ids left out of the last image
@@ -231,29 +229,27 @@ class ViewCulling:
         return hidden
 
     def _paint(self, bodies: Sequence[_Noted], restore: bool) -> None:
-        cid = self.client
+        client = self.client
         for n in bodies:
             for link, rgba in n.rgba:
-                pybullet.changeVisualShape(n.body, link,
-                                           rgbaColor=rgba if restore else rgba[:3] + (0.0,),
-                                           physicsClientId=cid)
+                client.changeVisualShape(n.body, link,
+                                         rgbaColor=rgba if restore else rgba[:3] + (0.0,))
 
     def _current(self) -> List[_Noted]:
         """The noted bodies still there (a removed one's id may be a new body's: it has not
         the user data)."""
-        cid = self.client
-        bodies = _noted.get(cid, {})
-        gone = [body for body, n in bodies.items() if _tag(cid, body) != n.tag]
+        client = self.client
+        bodies = client.view_noted
+        gone = [body for body, n in bodies.items() if _tag(client, body) != n.tag]
         for body in gone:
             del bodies[body]
         return list(bodies.values())
 
     def _world_boxes(self, noted: Sequence[_Noted]) -> Tuple[np.ndarray, np.ndarray]:
         """(lows, highs): N x 3 world bounds of the ``noted`` bodies where they stand now."""
-        cid = self.client
+        client = self.client
         lows, highs = np.empty((len(noted), 3)), np.empty((len(noted), 3))
         for k, n in enumerate(noted):
-            position, orientation = pybullet.getBasePositionAndOrientation(
-                n.body, physicsClientId=cid)
+            position, orientation = client.getBasePositionAndOrientation(n.body)
             lows[k], highs[k] = box_in_frame(n.bounds, position, orientation)
         return lows, highs

@@ -18,12 +18,13 @@ A box or plane whose ``<material>`` script has a texture image (world_sdf ``Shap
 material_scripts) is drawn with it, tinted by its colour, the same way (``_box_visual_file``):
 the whole image once across its top face, upright seen from above with +x to the right and +y
 up (u along +x, v along +y, as Gazebo maps a plane); a box shows it on each side face too.
+A deleted model's bodies parked for reuse (body_pool) are taken back as ``build_world`` would
+build them (``reused_world_bodies``, ``place_world_bodies``).
 
 Units: metres; poses in the world frame (z up), as in world_sdf.
 """
 import os
 import tempfile
-from collections import OrderedDict
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -31,6 +32,7 @@ import numpy as np
 from . import bullet_shapes, collision_filters, texture_budget, view_culling
 from ..files import mesh_cache
 from .bullet import pybullet
+from .client import Client
 from .rendering import egl_enabled, note_textures
 from ...errors import UserError, WorldError
 from ..kinematics import cross_2d, pose_from_xyz_rpy, quat_from_matrix
@@ -44,7 +46,8 @@ from ..files.world_types import Inertial, Link, Shape, World
 # collisionFilterMask=WORLD_COLLISION_GROUP, and other bodies (the robot) use another group.
 # Bullet also tests the ray's own group (1) against a body's mask, so the mask keeps bit 1; it
 # drops the world's own bit, so that static bodies never test each other (wasted work every step).
-# Robots (physics.RobotBody) take one bit each of the higher ones, up to ALL_COLLISION_GROUPS.
+# Robots (robot_body.RobotBody) take one bit each of the higher ones, up to
+# ALL_COLLISION_GROUPS.
 WORLD_COLLISION_GROUP = 4
 ALL_COLLISION_GROUPS = (1 << 28) - 1
 WORLD_COLLISION_MASK = ALL_COLLISION_GROUPS & ~WORLD_COLLISION_GROUP
@@ -66,9 +69,9 @@ PLANE_MIN_EXTENT = 100.0    # m
 Point = Tuple[float, float]
 
 
-def build_world(world: World, client_id: int,
+def build_world(world: World, client: Client,
                 warnings: Optional[List[str]] = None) -> Dict[str, int]:
-    """Create the world's bodies in pybullet client ``client_id``.
+    """Create the world's bodies in pybullet ``client``.
 
     Returns shape name -> body id, for every collision shape and every visual without a twin of
     a static model (a polyline that is not convex is one body whose extra pieces are links of
@@ -78,34 +81,34 @@ def build_world(world: World, client_id: int,
     """
     bodies: Dict[str, int] = {}
     try:
-        _plan_textures(world, client_id, warnings if warnings is not None else [])
-        _build(world, client_id, bodies)
+        _plan_textures(world, client, warnings if warnings is not None else [])
+        _build(world, client, bodies)
     except BaseException:   # a spawn that cannot be built leaves no body behind
         for body in set(bodies.values()):
-            pybullet.removeBody(body, physicsClientId=client_id)
-            collision_filters.forget_body(client_id, body)
+            client.removeBody(body)
+            collision_filters.forget_body(client, body)
         raise
     return bodies
 
 
-def _build(world: World, client_id: int, bodies: Dict[str, int]) -> None:
+def _build(world: World, client: Client, bodies: Dict[str, int]) -> None:
     """build_world's work: each body into ``bodies`` as soon as it exists."""
     movable: Dict[str, List[Shape]] = {}
     # Box, plane and polyline visuals are mesh files, read when their body is created.
     with tempfile.TemporaryDirectory(prefix="tutorial_turtlebot_meshes_") as mesh_dir:
         for shape in world.collisions:
             if shape.static:
-                bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=True)
+                bodies[shape.name] = _body(shape, client, mesh_dir, collide=True)
             else:
                 movable.setdefault(shape.link, []).append(shape)
         for shape in world.visuals:
             if not shape.static:
                 movable.setdefault(shape.link, []).append(shape)
             elif shape.twin is None:
-                bodies[shape.name] = _body(shape, client_id, mesh_dir, collide=False)
+                bodies[shape.name] = _body(shape, client, mesh_dir, collide=False)
         links = {link.scoped: link for model in world.model_specs for link in model.links}
         for scoped, shapes in movable.items():
-            body = _movable_body(links[scoped], shapes, client_id, mesh_dir)
+            body = _movable_body(links[scoped], shapes, client, mesh_dir)
             bodies.update((shape.name, body) for shape in shapes)
 
 
@@ -126,7 +129,7 @@ def _drawn_textures(shape: Shape) -> List[str]:
     return []
 
 
-def _plan_textures(world: World, cid: int, warnings: List[str]) -> None:
+def _plan_textures(world: World, client: Client, warnings: List[str]) -> None:
     """Tell texture_budget the texture images the world's visuals are drawn with (each image
     once, with how many visuals use it), and add to ``warnings`` its line, if it halves any,
     and one line for each texture that cannot be read now (drawn in its colour)."""
@@ -146,7 +149,7 @@ def _plan_textures(world: World, cid: int, warnings: List[str]) -> None:
             else:
                 uses[info.digest] = texture_budget.TextureUse(texture, info.width, info.height)
     if uses:
-        line = texture_budget.plan(cid, uses, per_visual=not egl_enabled(cid))
+        line = texture_budget.plan(client, uses, per_visual=not egl_enabled(client))
         if line is not None:
             warnings.append(line)
 
@@ -178,7 +181,7 @@ def _principal(inertial: Inertial):
     return quat_from_matrix(axes), tuple(float(m) for m in moments)
 
 
-def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> int:
+def _movable_body(link: Link, shapes: List[Shape], client: Client, mesh_dir: str) -> int:
     """One movable rigid body for ``link``: its collisions and visuals placed around its centre
     of mass, its mass and principal moments of inertia, its first collision's friction."""
     com_pos, com_orn = link_com_pose(link)
@@ -192,31 +195,30 @@ def _movable_body(link: Link, shapes: List[Shape], cid: int, mesh_dir: str) -> i
     col = -1
     if collisions:
         col = bullet_shapes.collision_shape_array(
-            cid, **_shape_arrays(collisions, to_com, cid, mesh_dir, visual=False))
+            client, **_shape_arrays(collisions, to_com, client, mesh_dir, visual=False))
     if visuals:
-        vis = pybullet.createVisualShapeArray(
-            **_shape_arrays(visuals, to_com, cid, mesh_dir, visual=True), physicsClientId=cid)
+        vis = client.createVisualShapeArray(
+            **_shape_arrays(visuals, to_com, client, mesh_dir, visual=True))
     else:
-        vis = _unseen_visual(cid, mesh_dir)     # collisions alone are not drawn
+        vis = _unseen_visual(client, mesh_dir)     # collisions alone are not drawn
     _, moments = _principal(link.inertial)
-    body = pybullet.createMultiBody(baseMass=link.inertial.mass, baseCollisionShapeIndex=col,
-                                    baseVisualShapeIndex=vis, basePosition=com_pos,
-                                    baseOrientation=com_orn, physicsClientId=cid)
+    body = client.createMultiBody(baseMass=link.inertial.mass, baseCollisionShapeIndex=col,
+                                  baseVisualShapeIndex=vis, basePosition=com_pos,
+                                  baseOrientation=com_orn)
     if body < 0:
         raise WorldError("%s: pybullet could not build this link" % link.scoped)
     mu = collisions[0].mu if collisions else WORLD_FRICTION
-    pybullet.changeDynamics(body, -1, localInertiaDiagonal=moments, lateralFriction=mu,
-                            restitution=WORLD_RESTITUTION, linearDamping=0.0, angularDamping=0.0,
-                            activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING,
-                            physicsClientId=cid)
-    collision_filters.set_filter(cid, body, -1, MOVABLE_COLLISION_GROUP,
+    client.changeDynamics(body, -1, localInertiaDiagonal=moments, lateralFriction=mu,
+                          restitution=WORLD_RESTITUTION, linearDamping=0.0, angularDamping=0.0,
+                          activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING)
+    collision_filters.set_filter(client, body, -1, MOVABLE_COLLISION_GROUP,
                                  MOVABLE_COLLISION_MASK if collisions else 0)
-    if egl_enabled(cid):   # never left out of a camera image, nor what shares its drawing
-        view_culling.note_drawn_groups(cid, body, visuals)
+    if egl_enabled(client):   # never left out of a camera image, nor what shares its drawing
+        view_culling.note_drawn_groups(client, body, visuals)
     return body
 
 
-def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: bool) -> dict:
+def _shape_arrays(shapes: List[Shape], to_com, client: Client, mesh_dir: str, visual: bool) -> dict:
     """Keyword arguments of createVisualShapeArray (``visual``) or createCollisionShapeArray for
     ``shapes`` placed in the body frame ``to_com``; mesh files are written in ``mesh_dir``."""
     frame = "visualFrame" if visual else "collisionFrame"
@@ -243,13 +245,13 @@ def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: 
             mesh = load_mesh(s.mesh, s.size)
             if not visual:   # one file of every triangle: pybullet collides with its hull
                 mesh = Mesh(mesh.path, mesh.vertices, (MeshPart(mesh.faces, None),))
-            for path, rgba in _visual_files(s, mesh, cid, mesh_dir) if visual else \
+            for path, rgba in _visual_files(s, mesh, client, mesh_dir) if visual else \
                     write_obj_parts(mesh, mesh_dir):
                 add(pybullet.GEOM_MESH, pose, _part_colour(s, rgba), mesh=path)
         elif s.kind == "box":
             half = [v / 2 for v in s.size]
             if visual and s.texture is not None:
-                path, rgba = _box_visual_file(s, half[0], half[1], -half[2], half[2], cid,
+                path, rgba = _box_visual_file(s, half[0], half[1], -half[2], half[2], client,
                                               mesh_dir)
                 add(pybullet.GEOM_MESH, pose, rgba, mesh=path)
             elif visual:   # a file: EGL flattens thin GEOM_BOX visuals
@@ -265,7 +267,7 @@ def _shape_arrays(shapes: List[Shape], to_com, cid: int, mesh_dir: str, visual: 
     return args
 
 
-def _visual_files(shape: Shape, mesh: Mesh, cid: int, mesh_dir: str):
+def _visual_files(shape: Shape, mesh: Mesh, client: Client, mesh_dir: str):
     """write_obj_parts of a visual mesh: with its textures where the file's own colours are
     drawn (no SDF <material>), or where it is a box or plane of a script's texture
     (``_box_mesh``), each image halved as the client's texture budget says (texture_budget);
@@ -276,10 +278,10 @@ def _visual_files(shape: Shape, mesh: Mesh, cid: int, mesh_dir: str):
         info = texture_info(texture)
         if info is not None:
             use = texture_budget.TextureUse(texture, info.width, info.height)
-            halvings[texture] = texture_budget.halvings(cid, info.digest, use,
-                                                        per_visual=not egl_enabled(cid))
+            halvings[texture] = texture_budget.halvings(client, info.digest, use,
+                                                        per_visual=not egl_enabled(client))
     if halvings:
-        note_textures(cid)
+        note_textures(client)
     # written once for this content, kept in the mesh cache (mesh_cache.obj_parts)
     return mesh_cache.visual_obj_parts(mesh, mesh_dir, halvings or None)
 
@@ -289,19 +291,19 @@ def _part_colour(shape: Shape, rgba) -> Tuple[float, float, float, float]:
     return tuple(rgba) if shape.mesh_colours and rgba is not None else shape.rgba
 
 
-def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
+def _body(shape: Shape, client: Client, mesh_dir: str, collide: bool) -> int:
     """One fixed body for ``shape``: collision and visual geometry, or visual only. A collision
     without a visual twin is not drawn (cameras see visuals only), nor is a piece of a mesh
     collision beyond its visual parts."""
-    pieces = _pieces(shape, cid, mesh_dir, collide, draw=not collide or shape.twin is not None)
+    pieces = _pieces(shape, client, mesh_dir, collide, draw=not collide or shape.twin is not None)
     unseen = None
     for i, (col, vis) in enumerate(pieces):
         if col != -1 and vis == -1:
-            unseen = _unseen_visual(cid, mesh_dir) if unseen is None else unseen
+            unseen = _unseen_visual(client, mesh_dir) if unseen is None else unseen
             pieces[i] = (col, unseen)
     (base_col, base_vis), links = pieces[0], pieces[1:]
     position, orientation = pose_from_xyz_rpy(shape.pose)
-    body = pybullet.createMultiBody(
+    body = client.createMultiBody(
         baseMass=0.0, baseCollisionShapeIndex=base_col, baseVisualShapeIndex=base_vis,
         basePosition=position, baseOrientation=orientation,
         linkMasses=[0.0] * len(links),
@@ -312,20 +314,19 @@ def _body(shape: Shape, cid: int, mesh_dir: str, collide: bool) -> int:
         linkInertialFrameOrientations=[(0, 0, 0, 1)] * len(links),
         linkParentIndices=[0] * len(links), linkJointTypes=[pybullet.JOINT_FIXED] * len(links),
         linkJointAxis=[(0, 0, 1)] * len(links),
-        useMaximalCoordinates=_static_rigid(shape, collide, links), physicsClientId=cid)
+        useMaximalCoordinates=_static_rigid(shape, collide, links))
     if body < 0:
         raise WorldError("%s: pybullet could not build %s" % (shape.name, shape.kind))
-    if egl_enabled(cid) and (not collide or shape.twin is not None):
-        view_culling.note_static_body(cid, body, shape)   # left out of images it cannot show
+    if egl_enabled(client) and (not collide or shape.twin is not None):
+        view_culling.note_static_body(client, body, shape)   # left out of images it cannot show
     for link in range(-1, len(links)) if collide else ():
-        collision_filters.set_filter(cid, body, link, WORLD_COLLISION_GROUP,
+        collision_filters.set_filter(client, body, link, WORLD_COLLISION_GROUP,
                                      WORLD_COLLISION_MASK)
-        pybullet.changeDynamics(body, link, lateralFriction=WORLD_FRICTION,
-                                restitution=WORLD_RESTITUTION, physicsClientId=cid)
+        client.changeDynamics(body, link, lateralFriction=WORLD_FRICTION,
+                              restitution=WORLD_RESTITUTION)
     if _static_rigid(shape, collide, links):   # asleep: Bullet skips its bounds every step
-        pybullet.changeDynamics(body, -1, activationState=(
-            pybullet.ACTIVATION_STATE_ENABLE_SLEEPING | pybullet.ACTIVATION_STATE_SLEEP),
-            physicsClientId=cid)
+        client.changeDynamics(body, -1, activationState=(
+            pybullet.ACTIVATION_STATE_ENABLE_SLEEPING | pybullet.ACTIVATION_STATE_SLEEP))
     return body
 
 
@@ -342,7 +343,7 @@ def _static_rigid(shape: Shape, collide: bool, links: list) -> bool:
     return not links and (not collide or shape.kind == "mesh")
 
 
-def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool,
+def _pieces(shape: Shape, client: Client, mesh_dir: str, collide: bool,
             draw: bool = True) -> List[Tuple[int, int]]:
     """(collision shape id or -1, visual shape id or -1) per convex piece of ``shape``, in its
     frame; without ``draw``, no visual shape is made.
@@ -353,10 +354,10 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool,
     """
     rgba = shape.rgba
     if shape.kind == "mesh":
-        return _mesh_pieces(shape, cid, mesh_dir, collide, draw)
+        return _mesh_pieces(shape, client, mesh_dir, collide, draw)
     if shape.kind == "polyline":
         polygons = [shape.points] if _is_convex(shape.points) else _triangulate(shape)
-        return [_prism(polygon, shape.size[0], rgba, cid, mesh_dir, collide, draw)
+        return [_prism(polygon, shape.size[0], rgba, client, mesh_dir, collide, draw)
                 for polygon in polygons]
     if shape.kind in ("box", "plane"):
         if shape.kind == "box":
@@ -368,25 +369,25 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool,
             col_args = {"halfExtents": [max(s, PLANE_MIN_EXTENT) / 2 for s in shape.size]
                         + [half[2]], "collisionFramePosition": (0, 0, -half[2])}
             z_range = (-PLANE_THICKNESS, 0.0)
-        col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_BOX, **col_args)
+        col = (bullet_shapes.collision_shape(client, pybullet.GEOM_BOX, **col_args)
                if collide else -1)
         hx, hy = half[0], half[1]
         if not draw:
             return [(col, -1)]
         if shape.texture is not None:
-            path, rgba = _box_visual_file(shape, hx, hy, *z_range, cid, mesh_dir)
-            return [(col, pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
-                                                     rgbaColor=rgba, physicsClientId=cid))]
+            path, rgba = _box_visual_file(shape, hx, hy, *z_range, client, mesh_dir)
+            return [(col, client.createVisualShape(pybullet.GEOM_MESH, fileName=path,
+                                                   rgbaColor=rgba))]
         rectangle = [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)]
-        return [(col, _mesh_visual(rectangle, *z_range, rgba, cid, mesh_dir))]
+        return [(col, _mesh_visual(rectangle, *z_range, rgba, client, mesh_dir))]
     kind = {"cylinder": pybullet.GEOM_CYLINDER, "sphere": pybullet.GEOM_SPHERE}[shape.kind]
     if shape.kind == "cylinder":
         col_args = {"radius": shape.size[0], "height": shape.size[1]}
         vis_args = {"radius": shape.size[0], "length": shape.size[1]}
     else:
         col_args = vis_args = {"radius": shape.size[0]}
-    col = bullet_shapes.collision_shape(cid, kind, **col_args) if collide else -1
-    vis = (pybullet.createVisualShape(kind, rgbaColor=rgba, physicsClientId=cid, **vis_args)
+    col = bullet_shapes.collision_shape(client, kind, **col_args) if collide else -1
+    vis = (client.createVisualShape(kind, rgbaColor=rgba, **vis_args)
            if draw else -1)
     return [(col, vis)]
 
@@ -397,7 +398,7 @@ def _pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool,
 TRIMESH_CHUNK = 40_000
 
 
-def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool,
+def _mesh_pieces(shape: Shape, client: Client, mesh_dir: str, collide: bool,
                  draw: bool = True) -> List[Tuple[int, int]]:
     """A static mesh: its triangles as concave collision shapes of TRIMESH_CHUNK triangles or
     fewer (a fixed body collides with the triangles themselves) and, with ``draw``, a visual
@@ -410,30 +411,29 @@ def _mesh_pieces(shape: Shape, cid: int, mesh_dir: str, collide: bool,
             chunk = faces[start:start + TRIMESH_CHUNK]
             used, local = np.unique(chunk, return_inverse=True)
             collisions.append(bullet_shapes.collision_shape(
-                cid, pybullet.GEOM_MESH, vertices=mesh.vertices[used].tolist(),
+                client, pybullet.GEOM_MESH, vertices=mesh.vertices[used].tolist(),
                 indices=local.reshape(-1).tolist(), flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH))
-    visuals = [pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path,
-                                          rgbaColor=_part_colour(shape, rgba),
-                                          physicsClientId=cid)
-               for path, rgba in (_visual_files(shape, mesh, cid, mesh_dir) if draw else ())]
+    visuals = [client.createVisualShape(pybullet.GEOM_MESH, fileName=path,
+                                        rgbaColor=_part_colour(shape, rgba))
+               for path, rgba in (_visual_files(shape, mesh, client, mesh_dir) if draw else ())]
     count = max(len(collisions), len(visuals))
     collisions += [-1] * (count - len(collisions))
     visuals += [-1] * (count - len(visuals))
     return list(zip(collisions, visuals))
 
 
-def _prism(polygon: Sequence[Point], height: float, rgba, cid: int, mesh_dir: str,
+def _prism(polygon: Sequence[Point], height: float, rgba, client: Client, mesh_dir: str,
            collide: bool, draw: bool = True) -> Tuple[int, int]:
     """A convex counter-clockwise polygon extruded from z 0 to ``height``: a convex-hull collision
     shape (pybullet inflates it by its 1 mm collision margin) and, with ``draw``, a flat-shaded
     visual mesh of the same solid."""
     corners = [(x, y, z) for z in (0.0, height) for x, y in polygon]
-    col = (bullet_shapes.collision_shape(cid, pybullet.GEOM_MESH, vertices=corners)
+    col = (bullet_shapes.collision_shape(client, pybullet.GEOM_MESH, vertices=corners)
            if collide else -1)
-    return col, (_mesh_visual(polygon, 0.0, height, rgba, cid, mesh_dir) if draw else -1)
+    return col, (_mesh_visual(polygon, 0.0, height, rgba, client, mesh_dir) if draw else -1)
 
 
-def _unseen_visual(cid: int, mesh_dir: str) -> int:
+def _unseen_visual(client: Client, mesh_dir: str) -> int:
     """A visual shape that draws nothing (one triangle of no area, a file in ``mesh_dir``). A
     body or link without a visual shape is drawn by pybullet's renderers as its collision shape
     (white, or EGL's link colours); Gazebo's cameras never see collisions."""
@@ -442,10 +442,10 @@ def _unseen_visual(cid: int, mesh_dir: str) -> int:
         with open(path, "w") as f:
             f.write("# one triangle of no area: nothing drawn\nv 0 0 0\nv 0 0 0\nv 0 0 0\n"
                     "f 1 2 3\n")
-    return pybullet.createVisualShape(pybullet.GEOM_MESH, fileName=path, physicsClientId=cid)
+    return client.createVisualShape(pybullet.GEOM_MESH, fileName=path)
 
 
-def _mesh_visual(polygon: Sequence[Point], z0: float, z1: float, rgba, cid: int,
+def _mesh_visual(polygon: Sequence[Point], z0: float, z1: float, rgba, client: Client,
                  mesh_dir: str) -> int:
     """Visual shape of a convex counter-clockwise polygon extruded from ``z0`` to ``z1``,
     flat-shaded, written as a Wavefront file in ``mesh_dir`` (read when its body is created).
@@ -453,9 +453,8 @@ def _mesh_visual(polygon: Sequence[Point], z0: float, z1: float, rgba, cid: int,
     A file, because pybullet's EGL renderer draws no mesh given as vertex lists, and flattens
     thin boxes; both renderers draw a file as it is.
     """
-    return pybullet.createVisualShape(pybullet.GEOM_MESH, rgbaColor=rgba,
-                                      fileName=_obj_file(polygon, z0, z1, mesh_dir),
-                                      physicsClientId=cid)
+    return client.createVisualShape(pybullet.GEOM_MESH, rgbaColor=rgba,
+                                    fileName=_obj_file(polygon, z0, z1, mesh_dir))
 
 
 def _obj_file(polygon: Sequence[Point], z0: float, z1: float, mesh_dir: str) -> str:
@@ -508,11 +507,11 @@ def _box_mesh(shape: Shape, hx: float, hy: float, z0: float, z1: float) -> Mesh:
     return Mesh(shape.kind, vertices, (part,))
 
 
-def _box_visual_file(shape: Shape, hx: float, hy: float, z0: float, z1: float, cid: int,
+def _box_visual_file(shape: Shape, hx: float, hy: float, z0: float, z1: float, client: Client,
                      mesh_dir: str) -> Tuple[str, Tuple[float, float, float, float]]:
     """(Wavefront file, colour to draw it in) of ``_box_mesh``: textured as ``_visual_files``
     allows, else in ``shape.rgba``."""
-    [(path, rgba)] = _visual_files(shape, _box_mesh(shape, hx, hy, z0, z1), cid, mesh_dir)
+    [(path, rgba)] = _visual_files(shape, _box_mesh(shape, hx, hy, z0, z1), client, mesh_dir)
     return path, tuple(rgba) if rgba is not None else shape.rgba
 
 
@@ -546,118 +545,7 @@ def _triangulate(shape: Shape) -> List[Tuple[Point, Point, Point]]:
     return triangles
 
 
-# --- deleted bodies kept for reuse -----------------------------------------------------------
-
-# pybullet frees little of a body on removeBody: its collision shapes (and, with the EGL
-# renderer, the renderer's copy of its visuals) stay until the client closes. Measured per
-# spawn/delete cycle: about 2 KB (a box) and 20 KB (a Burger) of RSS, 16 and 70 KB with EGL.
-# A deleted body is parked instead (far below the world, asleep, colliding with nothing) and
-# the next spawn of the same text takes it back, so that RSS stays flat under churn.
-# At most MAX_PARKED_BODIES wait, the least recently parked removed first: each costs the
-# step a little however asleep it is (2,000 parked boxes: 7 times the CPU of the empty world;
-# 64: 1.26 times; 16: 1.10), and most churn repeats a few texts (the hostile soak: 21).
-PARK_DEPTH = 1e4     # m below the world origin
-PARK_SPACING = 10.0  # m between parked bodies (by body id): they never touch
-MAX_PARKED_BODIES = 32
-
-
-class BodyPool:
-    """Bodies of deleted models by the text they were built from (a key: its digest), to be
-    reused; at most MAX_PARKED_BODIES of them, least recently parked removed first."""
-
-    def __init__(self, client_id: int):
-        self.client = client_id
-        self._parked: "OrderedDict[object, List[List[int]]]" = OrderedDict()
-        self._pristine: Dict[int, list] = {}   # body -> (mass, inertia) of each link, as built
-        self.parked_bodies = 0
-
-    def remember(self, bodies: Sequence[int]) -> None:
-        """Note the mass and inertia of new ``bodies`` (set_link_properties may change them
-        before they are parked: they come back as they were built)."""
-        cid = self.client
-        for body in dict.fromkeys(bodies):
-            self._pristine[body] = [
-                pybullet.getDynamicsInfo(body, link, physicsClientId=cid)[:3:2]
-                for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid))]
-
-    def park(self, key, bodies: Sequence[int]) -> bool:
-        """Park ``bodies`` (of one model) under ``key``; False (nothing done) if one of them
-        was not ``remember``ed or its state is not finite: the caller removes them."""
-        cid = self.client
-        bodies = list(dict.fromkeys(bodies))
-        for body in bodies:
-            if body not in self._pristine:
-                return False
-            pos, orn = pybullet.getBasePositionAndOrientation(body, physicsClientId=cid)
-            lin, ang = pybullet.getBaseVelocity(body, physicsClientId=cid)
-            if not np.all(np.isfinite(pos + orn + lin + ang)):
-                return False
-        for body in bodies:
-            pybullet.resetBasePositionAndOrientation(
-                body, (PARK_SPACING * body, 0.0, -PARK_DEPTH), (0, 0, 0, 1), physicsClientId=cid)
-            pybullet.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
-            for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
-                collision_filters.set_filter(cid, body, link, 0, 0)
-                pybullet.changeDynamics(body, link, activationState=(
-                    pybullet.ACTIVATION_STATE_ENABLE_SLEEPING | pybullet.ACTIVATION_STATE_SLEEP),
-                    physicsClientId=cid)
-        self._parked.setdefault(key, []).append(bodies)
-        self._parked.move_to_end(key)
-        self.parked_bodies += len(bodies)
-        while self.parked_bodies > MAX_PARKED_BODIES:
-            self._remove_oldest()
-        return True
-
-    def _remove_oldest(self) -> None:
-        """Remove the bodies parked longest ago from pybullet."""
-        key, groups = next(iter(self._parked.items()))
-        bodies = groups.pop(0)
-        if not groups:
-            del self._parked[key]
-        for body in bodies:
-            pybullet.removeBody(body, physicsClientId=self.client)
-            collision_filters.forget_body(self.client, body)
-        self.forget(bodies)
-        self.parked_bodies -= len(bodies)
-
-    def take(self, key) -> Optional[List[int]]:
-        """Bodies parked under ``key`` (None if none), awake, at rest, every joint at 0, with
-        the dynamics they were built with. The caller places them and sets their collision
-        groups (parked bodies collide with nothing)."""
-        parked = self._parked.get(key)
-        if not parked:
-            return None
-        bodies = parked.pop()
-        if not parked:
-            del self._parked[key]
-        self.parked_bodies -= len(bodies)
-        cid = self.client
-        for body in bodies:
-            for link, built in zip(range(-1, len(self._pristine[body]) - 1),
-                                   self._pristine[body]):
-                if pybullet.getDynamicsInfo(body, link, physicsClientId=cid)[:3:2] != built:
-                    pybullet.changeDynamics(body, link, mass=built[0],
-                                            localInertiaDiagonal=built[1], physicsClientId=cid)
-                pybullet.changeDynamics(body, link, frictionAnchor=0, activationState=(
-                    pybullet.ACTIVATION_STATE_WAKE_UP | pybullet.ACTIVATION_STATE_DISABLE_SLEEPING),
-                    physicsClientId=cid)
-                if link >= 0:
-                    pybullet.resetJointState(body, link, 0.0, 0.0, physicsClientId=cid)
-        return bodies
-
-    def forget(self, bodies: Sequence[int]) -> None:
-        """``bodies`` were removed from pybullet (their ids may be given to new bodies)."""
-        for body in bodies:
-            self._pristine.pop(body, None)
-
-
-def body_pool(physics) -> BodyPool:
-    """The BodyPool of a WorldPhysics (made the first time it is asked for)."""
-    pool = getattr(physics, "body_pool", None)
-    if pool is None:
-        pool = physics.body_pool = BodyPool(physics.client)
-    return pool
-
+# --- a deleted model's parked bodies (body_pool) built again -----------------------------------
 
 def reused_world_bodies(world: World, bodies: Sequence[int]) -> Dict[str, int]:
     """``build_world``'s answer for ``world`` made of ``bodies``: those it built for the same
@@ -677,7 +565,7 @@ def reused_world_bodies(world: World, bodies: Sequence[int]) -> Dict[str, int]:
     return {name: body for names, body in zip(groups.values(), bodies) for name in names}
 
 
-def place_world_bodies(world: World, bodies: Dict[str, int], cid: int) -> None:
+def place_world_bodies(world: World, bodies: Dict[str, int], client: Client) -> None:
     """Put reused bodies where ``build_world`` builds them for ``world``, at rest, colliding
     as it sets them."""
     links = {link.scoped: link for model in world.model_specs for link in model.links}
@@ -689,15 +577,15 @@ def place_world_bodies(world: World, bodies: Dict[str, int], cid: int) -> None:
             pos, orn = pose_from_xyz_rpy(shape.pose)
         else:
             pos, orn = link_com_pose(links[shape.link])
-        pybullet.resetBasePositionAndOrientation(body, pos, orn, physicsClientId=cid)
-        pybullet.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
-        for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
+        client.resetBasePositionAndOrientation(body, pos, orn)
+        client.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0))
+        for link in range(-1, client.getNumJoints(body)):
             if shape.static and shape.collision:
-                collision_filters.set_filter(cid, body, link, WORLD_COLLISION_GROUP,
+                collision_filters.set_filter(client, body, link, WORLD_COLLISION_GROUP,
                                              WORLD_COLLISION_MASK)
             elif not shape.static:
                 has_collision = any(s.collision and s.link == shape.link
                                     for s in world.collisions)
                 collision_filters.set_filter(
-                    cid, body, link, MOVABLE_COLLISION_GROUP,
+                    client, body, link, MOVABLE_COLLISION_GROUP,
                     MOVABLE_COLLISION_MASK if has_collision else 0)

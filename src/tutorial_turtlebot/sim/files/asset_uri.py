@@ -222,12 +222,12 @@ def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None)
             if found is None:
                 packages = os.environ.get("ROS_PACKAGE_PATH", "unset")
                 raise AssetNotFound("%s: no ROS package %r on ROS_PACKAGE_PATH (%s) and no model "
-                                 "folder of that name in %s"
-                                 % (uri, package, packages, model_path.describe()),
-                                 short="%s: no ROS package %r and no model folder of that name"
-                                       % (uri, package),
-                                 searched="package:// searched ROS_PACKAGE_PATH (%s), then %s"
-                                          % (packages, model_path.describe()))
+                                    "folder of that name in %s"
+                                    % (uri, package, packages, model_path.describe()),
+                                    short="%s: no ROS package %r and no model folder of that name"
+                                    % (uri, package),
+                                    searched="package:// searched ROS_PACKAGE_PATH (%s), then %s"
+                                    % (packages, model_path.describe()))
             return found
         path = os.path.join(root, inner)
     else:

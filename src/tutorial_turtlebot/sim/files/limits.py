@@ -22,7 +22,7 @@ MAX_MASS = 1e6              # kg
 MAX_INERTIA = 1e6           # kg m^2: a moment (or product) of inertia
 MAX_SIZE = 1e4              # m: a box side, a radius, a length, a plane's side, a height
 MAX_SCALE = 1e4             # a scale factor: a mesh's (its magnitude; negative mirrors), a scan's
-                            # resolution
+# resolution
 MAX_FRICTION = 1e6          # a friction coefficient
 MAX_FORCE = 1e6             # N (and N m for a torque, N or N m for a joint effort)
 MAX_JOINT_POSITION = 1e6    # rad or m: a joint position (set_model_configuration)
@@ -40,8 +40,8 @@ MAX_IMAGE_SIDE = 4096       # px: a camera image's width or height (renderer buf
 MAX_NOISE = 1e3             # a noise's mean or standard deviation, in its sensor's unit
 MAX_ACCELERATION = 1e6      # m/s^2: a wheel's acceleration
 MIN_WHEEL_SIZE = 0.01       # m: a diff drive's wheel diameter and wheel separation (a wheel
-                            # spins at the speed over its radius, a turn is rim speeds over the
-                            # separation)
+# spins at the speed over its radius, a turn is rim speeds over the
+# separation)
 MAX_DAMPING = 1e6           # N m s/rad (N s/m): a joint's viscous damping
 # A URDF's tree, bounded for what one load may cost (Gazebo has no such limits; its robots have
 # tens of links): pybullet's importer merges fixed links recursively, printing a line per level
@@ -50,7 +50,7 @@ MAX_DAMPING = 1e6           # N m s/rad (N s/m): a joint's viscous damping
 MAX_URDF_LINKS = 1000       # links in one URDF
 MAX_URDF_DEPTH = 500        # joints from the root link to the farthest link
 MAX_MOVING_JOINTS = 127     # joints that are not fixed, per URDF: pybullet builds no more in one
-                            # body (a chain of 128 revolute joints fails to load)
+# body (a chain of 128 revolute joints fails to load)
 # Names (models, links, joints, frames, namespaces, topics) and the other string fields
 MAX_NAME = 256              # characters
 
@@ -76,7 +76,7 @@ def outside(field: str, value, low, high, unit: str = "", low_open: bool = False
         return None
     if low == 0 and low_open and not high_open:
         return "%s %s must be positive, at most %s%s" % (field, _g(value), _g(high),
-                                                          " " + unit if unit else "")
+                                                         " " + unit if unit else "")
     return "%s %s is outside %s%s, %s%s%s" % (
         field, _g(value), "(" if low_open else "[", _g(low), _g(high),
         ")" if high_open else "]", " " + unit if unit else "")
@@ -105,15 +105,29 @@ INERTIA_NAMES = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 
 
 def inertia_problem(moments: Sequence[float], products: Sequence[float] = (),
-                    allow_zero: bool = False, names: Sequence[str] = INERTIA_NAMES
-                    ) -> Optional[str]:
-    """ixx, iyy, izz in (0, MAX_INERTIA] kg m^2 ([0, ...] for a URDF, as ROS allows); ixy,
-    ixz, iyz within +-MAX_INERTIA. ``names``: the six fields as the caller's format names
+                    allow_zero: bool = False, names: Sequence[str] = INERTIA_NAMES,
+                    allow_negative: bool = False) -> Optional[str]:
+    """ixx, iyy, izz in (0, MAX_INERTIA] kg m^2 ([0, ...] for a URDF, as ROS allows; within
+    +-MAX_INERTIA with ``allow_negative``, for a caller that checks positive_definite itself);
+    ixy, ixz, iyz within +-MAX_INERTIA. ``names``: the six fields as the caller's format names
     them, in the order ixx iyy izz ixy ixz iyz."""
-    return first([outside(n, v, 0.0, MAX_INERTIA, "kg m^2", low_open=not allow_zero)
+    low = -MAX_INERTIA if allow_negative else 0.0
+    return first([outside(n, v, low, MAX_INERTIA, "kg m^2",
+                          low_open=not (allow_zero or allow_negative))
                   for n, v in zip(names[:3], moments)]
                  + [outside(n, v, -MAX_INERTIA, MAX_INERTIA, "kg m^2")
                     for n, v in zip(names[3:], products)])
+
+
+def positive_definite(moments: Sequence[float], products: Sequence[float] = (0, 0, 0)) -> bool:
+    """Whether the inertia matrix of ``moments`` (ixx iyy izz) and ``products`` (ixy ixz iyz)
+    is positive definite (Sylvester: every leading minor > 0)."""
+    ixx, iyy, izz = moments
+    ixy, ixz, iyz = products
+    minor2 = ixx * iyy - ixy * ixy
+    det = (ixx * (iyy * izz - iyz * iyz) - ixy * (ixy * izz - iyz * ixz)
+           + ixz * (ixy * iyz - iyy * ixz))
+    return ixx > 0 and minor2 > 0 and det > 0
 
 
 def size_problem(field: str, values: Sequence[float]) -> Optional[str]:

@@ -10,7 +10,7 @@ import numpy as np
 from .file_read import MAX_MESH_SIDE_FILE_BYTES
 from .mesh_side_files import read_file
 from .mesh_types import Mesh, MeshError, Rgba
-from .texture_images import halved_image, image_problem
+from .texture_images import fit_halvings, halved_image, image_problem, image_size
 
 # texture path -> the file name, in the folder written to, of the image to draw it with (or
 # None: drawn without it)
@@ -96,14 +96,16 @@ def write_mtl(image: str, directory: str) -> str:
 
 def texture_copy(texture: str, directory: str, halvings: int = 0) -> Optional[str]:
     """The file name (in ``directory``) of a checked copy of the image ``texture``, halved
-    ``halvings`` times (texture_images.halved_image; the whole image if it cannot be halved);
-    None if it is no longer a usable texture (changed since the mesh was read)."""
+    ``halvings`` times more than it is to fit MAX_TEXTURE_SIDE (texture_images.halved_image,
+    fit_halvings; the whole image if it cannot be halved); None if it is no longer a usable
+    texture (changed since the mesh was read)."""
     try:
         data = read_file(texture, MAX_MESH_SIDE_FILE_BYTES, "a texture", MeshError)
     except MeshError:
         return None
     if image_problem(data) is not None:
         return None
+    halvings += fit_halvings(*image_size(data))
     try:
         data, suffix = halved_image(data, halvings)
     except ValueError:

@@ -1,10 +1,10 @@
 """What a robot URDF's ``<gazebo>`` blocks declare: the plugins and sensors Gazebo would load.
 
-Read without ROS, Gazebo or pybullet. Each dataclass holds one gazebo_ros plugin's settings with
-Gazebo's defaults for what the block leaves out (gazebo_plugins' ``getParameter`` defaults),
-so the simulation can make what that plugin would make. Topic names are as written (relative
-ones resolve in the robot's namespace); frames are link names, unprefixed.
-Units: m, s, rad, Hz, N*m, m/s^2.
+Read without ROS, Gazebo or pybullet. Each dataclass of ``robot_plugin_types`` holds one
+gazebo_ros plugin's settings with Gazebo's defaults for what the block leaves out
+(gazebo_plugins' ``getParameter`` defaults), so the simulation can make what that plugin would
+make. Topic names are as written (relative ones resolve in the robot's namespace); frames are
+link names, unprefixed. Units: m, s, rad, Hz, N*m, m/s^2.
 
 ``read_plugins`` reads them (urdf_file calls it for every URDF): libgazebo_ros_diff_drive and
 libgazebo_ros_imu in a ``<gazebo>`` block; in a ``<gazebo reference="LINK">`` block a ray (or
@@ -19,157 +19,16 @@ poses), every name and topic to ``limits.MAX_NAME`` characters, topics to ROS's 
 """
 import math
 import os
-from dataclasses import dataclass
 from typing import Collection, Dict, List, Mapping, NamedTuple, Optional, Tuple
 
 from ...errors import UrdfError
 from ...ros_names import is_legal_name
 from . import limits
 from ..kinematics import ZERO_XYZ_RPY, XyzRpy
+from .robot_plugin_types import (
+    CAMERA, DIFF_DRIVE, GPU_LASER, IMU, LASER, OPENNI_KINECT, CameraSensor, CameraSpec,
+    DiffDrivePlugin, ImuPlugin, LaserConfig, LaserSensor, RobotPlugins)
 from .xml_reader import Element, XmlReader
-
-DIFF_DRIVE = "libgazebo_ros_diff_drive.so"
-LASER = "libgazebo_ros_laser.so"
-GPU_LASER = "libgazebo_ros_gpu_laser.so"
-IMU = "libgazebo_ros_imu.so"
-CAMERA = "libgazebo_ros_camera.so"
-OPENNI_KINECT = "libgazebo_ros_openni_kinect.so"
-
-
-@dataclass(frozen=True)
-class LaserConfig:
-    """Fields of the published LaserScan and the value used where there is no valid reading."""
-
-    name: str
-    angle_min: float
-    angle_max: float
-    angle_increment: float
-    samples: int = 360
-    range_min: float = 0.12
-    range_max: float = 3.5
-    noise_sigma: float = 0.01     # m, gaussian
-    no_return: float = math.inf   # nothing within range_max
-    too_close: float = -math.inf  # something at or inside range_min
-    rate: float = 5.0             # Hz, sim time
-
-
-@dataclass(frozen=True)
-class CameraSpec:
-    """What a camera renders: image size, horizontal field of view (rad), rate (Hz of sim
-    time), clip planes (m), whether it also gives depth, and gazebo_ros' hackBaseline (m:
-    P[3] = -f * baseline)."""
-
-    width: int
-    height: int
-    hfov: float
-    rate: float
-    near: float = 0.03
-    far: float = 100.0
-    depth: bool = False
-    baseline: float = 0.0
-
-
-@dataclass(frozen=True)
-class DiffDrivePlugin:
-    """``libgazebo_ros_diff_drive.so`` (a model plugin)."""
-
-    name: str
-    command_topic: str = "cmd_vel"
-    odometry_topic: str = "odom"
-    odometry_frame: str = "odom"
-    robot_base_frame: str = "base_footprint"
-    odometry_source: str = "world"        # "world" (ground truth) or "encoders" (Gazebo: encoder)
-    publish_tf: bool = True               # odometry on odometry_topic (and its TF), at all
-    publish_wheel_tf: bool = False        # not simulated (robot_state_publisher does it)
-    publish_wheel_joint_state: bool = False
-    update_rate: float = 100.0            # Hz of sim time; 0 = every physics step
-    left_joint: str = "left_joint"
-    right_joint: str = "right_joint"
-    wheel_separation: float = 0.34        # m
-    wheel_diameter: float = 0.15          # m
-    wheel_acceleration: float = 0.0       # m/s^2 at the rim; 0 = no ramp
-    wheel_torque: float = 5.0             # N*m
-    robot_namespace: str = ""             # <robotNamespace>; "" = the spawn's namespace
-    publish_odom_tf: bool = True          # <publishOdomTF>: the odom TF, when publish_tf is on
-
-    @property
-    def wheel_radius(self) -> float:
-        """m."""
-        return self.wheel_diameter / 2.0
-
-
-@dataclass(frozen=True)
-class LaserSensor:
-    """A ``<sensor type="ray">`` with ``libgazebo_ros_laser.so``: the ray geometry and noise in
-    ``laser`` (angle_increment = (max - min) / (samples - 1), as Gazebo publishes; ``rate`` =
-    the sensor's update_rate), where it sits and where it publishes."""
-
-    name: str                              # the sensor's name
-    link: str                              # the <gazebo reference=...> link
-    laser: LaserConfig
-    topic: str = "/world"                  # topicName (gazebo_ros_laser's default)
-    frame: str = "/world"                  # frameName
-    plugin: str = ""                       # the plugin's name
-    robot_namespace: str = ""
-    plugin_file: str = LASER               # or GPU_LASER on a gpu_ray sensor
-    pose: XyzRpy = ZERO_XYZ_RPY            # the sensor's <pose> in its link: x y z roll pitch yaw
-    range_resolution: float = 0.0          # m, <range><resolution> (not simulated)
-
-
-@dataclass(frozen=True)
-class ImuPlugin:
-    """``libgazebo_ros_imu.so`` (a model plugin reading link ``body_name``)."""
-
-    name: str
-    body_name: str                         # the link it reads
-    frame_name: str = ""                   # header.frame_id; "" = body_name
-    topic: str = "imu"                     # topicName
-    service_name: str = "imu_service"
-    update_rate: float = 0.0               # Hz; 0 = every physics step
-    gaussian_noise: float = 0.0
-    robot_namespace: str = ""
-
-    @property
-    def frame(self) -> str:
-        return self.frame_name or self.body_name
-
-
-@dataclass(frozen=True)
-class CameraSensor:
-    """A ``<sensor type="camera">`` with ``libgazebo_ros_camera.so`` or a
-    ``<sensor type="depth">`` with ``libgazebo_ros_openni_kinect.so``. Topics are relative to
-    ``camera_name`` (itself relative to the robot's namespace); ``spec.depth`` is True for the
-    depth sensor; ``spec.rate`` is the plugin's updateRate (else the sensor's update_rate)."""
-
-    name: str
-    link: str
-    spec: CameraSpec
-    plugin_file: str = CAMERA
-    camera_name: str = "camera"
-    frame: str = "camera_rgb_optical_frame"     # frameName
-    image_topic: str = "image_raw"
-    info_topic: str = "camera_info"
-    depth_image_topic: str = "depth/image_raw"
-    depth_info_topic: str = "depth/camera_info"
-    point_cloud_topic: str = "depth/points"
-    point_cloud_cutoff: float = 0.4              # m
-    robot_namespace: str = ""
-    pose: XyzRpy = ZERO_XYZ_RPY                  # the sensor's <pose> in its link
-    point_cloud_cutoff_max: float = 5.0          # m
-
-
-@dataclass(frozen=True)
-class RobotPlugins:
-    """Everything one URDF's <gazebo> blocks declare that this simulator makes. At most one
-    laser and one camera are simulated; ``warnings`` names (one line each) every plugin or
-    sensor that is not, and the robot runs without it."""
-
-    drive: Optional[DiffDrivePlugin] = None
-    laser: Optional[LaserSensor] = None
-    imu: Optional[ImuPlugin] = None
-    camera: Optional[CameraSensor] = None
-    warnings: Tuple[str, ...] = ()
-
 
 # --- reading the <gazebo> blocks --------------------------------------------------------------
 
@@ -219,9 +78,9 @@ def read_plugins(robot: Element, links: Collection[str], joint_types: Mapping[st
     element of xml_reader, whose ``links`` and joints, ``joint_types`` = {name: type}, are
     already read).
 
-    What gazebo_ros would load becomes a dataclass above; what it would not, or what this
-    simulator does not make, becomes one line in ``warnings``. A wrong value raises UrdfError
-    in xml_reader's one-line form ``<path>:<line>: <element>: <problem>``.
+    What gazebo_ros would load becomes a dataclass of robot_plugin_types; what it would not, or
+    what this simulator does not make, becomes one line in ``warnings``. A wrong value raises
+    UrdfError in xml_reader's one-line form ``<path>:<line>: <element>: <problem>``.
     """
     return _PluginReader(path, links, joint_types).read(robot)
 
@@ -404,8 +263,8 @@ class _PluginReader(XmlReader):
         angle_max = self._number(horizontal, "max_angle", 0.0, sensor, _ANGLE)
         if angle_min >= angle_max:
             self.fail(self._find(horizontal, "max_angle", sensor),
-                       "max_angle %g must be greater than min_angle %g" % (angle_max, angle_min),
-                       sensor)
+                      "max_angle %g must be greater than min_angle %g" % (angle_max, angle_min),
+                      sensor)
         vertical = scan.find("vertical") if scan is not None else None
         if vertical is not None and self.integer(vertical, "samples", 1, sensor) > 1:
             self._warn("%s: a scan of several vertical planes is not simulated; only the "
@@ -417,7 +276,7 @@ class _PluginReader(XmlReader):
         range_max = self._number(ranges, "max", 0.0, sensor, _DISTANCE)
         if range_min >= range_max:
             self.fail(ranges.find("max"), "max %g must be greater than min %g"
-                       % (range_max, range_min), sensor)
+                      % (range_max, range_min), sensor)
         sigma = self._noise(ray.find("noise"), sensor)
         rate = self._rate(sensor, "update_rate", 0.0, sensor)
         increment = (angle_max - angle_min) / (samples - 1) if samples > 1 else 0.0
@@ -442,7 +301,7 @@ class _PluginReader(XmlReader):
         kind = self._string(noise, "type", "gaussian")
         if kind not in NOISE_TYPES:
             self.fail(noise.find("type"), "must be one of %s, got %r"
-                       % (", ".join(NOISE_TYPES), kind), sensor)
+                      % (", ".join(NOISE_TYPES), kind), sensor)
         mean = self._number(noise, "mean", 0.0, sensor, _NOISE_MEAN)
         sigma = self._number(noise, "stddev", 0.0, sensor, _NOISE)
         if kind == "none":
@@ -470,7 +329,7 @@ class _PluginReader(XmlReader):
         far = self._number(clip, "far", 100.0, sensor, _REACH)
         if near >= far:
             self.fail(self._find(clip, "far", sensor),
-                       "far %g must be greater than near %g" % (far, near), sensor)
+                      "far %g must be greater than near %g" % (far, near), sensor)
         plugin_rate = self._rate(plugin, "updateRate", 0.0, plugin)
         sensor_rate = self._rate(sensor, "update_rate", 0.0, sensor)
         distortion = [self.number(plugin, key, 0.0, plugin) for key in (   # not simulated
@@ -490,8 +349,8 @@ class _PluginReader(XmlReader):
             cutoff_max = self._number(plugin, "pointCloudCutoffMax", 5.0, plugin, _DISTANCE)
             if cutoff_max <= cutoff:
                 self.fail(self._find(plugin, "pointCloudCutoffMax", plugin),
-                           "pointCloudCutoffMax %g must be greater than pointCloudCutoff %g"
-                           % (cutoff_max, cutoff), plugin)
+                          "pointCloudCutoffMax %g must be greater than pointCloudCutoff %g"
+                          % (cutoff_max, cutoff), plugin)
             extra = dict(
                 depth_image_topic=self._topic(plugin, "depthImageTopicName", "depth/image_raw"),
                 depth_info_topic=self._topic(plugin, "depthImageCameraInfoTopicName",
@@ -599,12 +458,12 @@ class _PluginReader(XmlReader):
         hint = "its continuous and revolute joints: %s" % (", ".join(wheels) or "none")
         if elem is None and name not in self.joint_types:
             self.fail(plugin, "no <%s>, and the default joint %r is not in this robot (%s)"
-                       % (tag, name, hint))
+                      % (tag, name, hint))
         if name not in self.joint_types:
             self.fail(elem, "joint %r is not in this robot (%s)" % (name, hint), plugin)
         if self.joint_types[name] not in WHEEL_JOINT_TYPES:
             self.fail(self._find(plugin, tag, plugin), "joint %r is %s; a wheel joint must be "
-                       "continuous or revolute" % (name, self.joint_types[name]), plugin)
+                      "continuous or revolute" % (name, self.joint_types[name]), plugin)
         return name
 
     def _plugin_id(self, elem) -> Tuple[str, str]:

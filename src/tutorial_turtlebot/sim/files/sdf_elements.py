@@ -81,7 +81,8 @@ NO_PLUGINS = "plugins do not run here (the sim offers gazebo_ros' world API itse
 # parent element -> child element -> Rule. The order is doc/worlds.md's.
 TABLE: Dict[str, Dict[str, Rule]] = {
     "world": {
-        "model": _rule(S, "built: links, collisions, visuals, a movable model's inertia"),
+        "model": _rule(S, "built: links, collisions, visuals, a movable model's inertia; a "
+                          "second of one name left out, as Gazebo leaves it out"),
         "include": _rule(S, "model://, package://, file:// and paths; <name>, <pose>, <static>; "
                             "a model, an actor or a light file"),
         "actor": _rule(A, "moved along its <script>; drawn unskinned (see Actors)"),
@@ -125,7 +126,8 @@ TABLE: Dict[str, Dict[str, Rule]] = {
     "link": {
         "collision": _rule(S, "built (a movable mesh as its convex hull)"),
         "visual": _rule(S, "drawn (see Textures and materials)"),
-        "inertial": _rule(S, "a movable link's mass and inertia; a static one's unused"),
+        "inertial": _rule(S, "a movable link's mass and inertia (one not positive definite: "
+                          "1 kg m^2 a moment, as ODE takes it); a static one's unused"),
         "pose": _rule(S, "relative to the model, or to a frame named in relative_to"),
         "sensor": _rule(K, "a world model's sensors do not run (a robot's come from its "
                            "URDF's <gazebo> plugins)"),
@@ -176,7 +178,8 @@ TABLE: Dict[str, Dict[str, Rule]] = {
     },
     "mesh": {
         "uri": _rule(S, "found as Gazebo finds it"),
-        "scale": _rule(S, "applied"),
+        "scale": _rule(S, "applied; a factor 0 leaves the mesh out (no extent to draw or "
+                       "hit)"),
         "submesh": _rule(K, "one named part of a mesh file cannot be taken here: the "
                             "geometry is left out of its link"),
     },

@@ -8,6 +8,11 @@ from . import limits
 from .world_types import Inertial
 from .xml_reader import Element
 
+# What ODE's dBodySetMass falls back to for an inertia that is not positive definite: an
+# identity inverse inertia (kg m^2: ixx iyy izz ixy ixz iyz)
+IDENTITY_INERTIA = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
+INERTIA_REPLACED = "a movable link's inertia is not positive definite"
+
 
 class InertiaReader:
     """The loader's reading of mass and friction, mixed into world_sdf's loader (an
@@ -20,10 +25,12 @@ class InertiaReader:
         physics body at all (ODELink::UpdateMass returns at once without one), so a static
         model's numbers are never used: Gazebo's building editor writes mass 0 and inertia
         nan there. Here such a link keeps SDF's defaults (nothing uses them either). On a
-        movable link Gazebo repairs nothing: ODELink::UpdateMass throws "Setting custom link
-        ... mass to zero!" for a mass that is not > 0 (nan included), and ODE's dBodySetMass
-        asserts a positive definite inertia (gzserver ends with "ODE INTERNAL ERROR ...
-        dMassCheck"). So those stay refused here, with the line at fault."""
+        movable link a mass that is not > 0 (nan included) stays refused, with the line at
+        fault: ODELink::UpdateMass throws "Setting custom link ... mass to zero!". An inertia
+        that is finite but not positive definite (all moments 0, say) is not refused there:
+        ODE's dBodySetMass says "inertia must be positive definite!" and gives the body an
+        identity inverse inertia, so the link turns as if each moment were 1 kg m^2. This
+        sim does the same, with one warning per file."""
         if node is None:
             return Inertial()
         mass = Inertial.mass
@@ -41,9 +48,8 @@ class InertiaReader:
                 if value is not None:
                     inertia[i] = self.floats(value, 1, finite=False)[0]
             problems.append((inertia_node, limits.inertia_problem(
-                inertia[:3], inertia[3:],
-                names=tuple("<inertia> %s" % n for n in limits.INERTIA_NAMES)),
-                not all(v > 0 for v in inertia[:3])))
+                inertia[:3], inertia[3:], allow_zero=True, allow_negative=True,
+                names=tuple("<inertia> %s" % n for n in limits.INERTIA_NAMES)), False))
         pose = self.pose(node)           # a pose is checked in any model: nan is garbage
         for at, problem, not_positive in problems:
             if problem and static:
@@ -51,7 +57,18 @@ class InertiaReader:
             if problem:
                 self.fail_bare(at, problem + (" (Gazebo refuses it on a link that is not static)"
                                               if not_positive else ""))
+        if not static and not limits.positive_definite(inertia[:3], inertia[3:]):
+            self._inertia_replaced(inertia_node, inertia)
+            inertia = list(IDENTITY_INERTIA)
         return Inertial(mass, pose, tuple(inertia))
+
+    def _inertia_replaced(self, at: Element, inertia) -> None:
+        """One warning per file: a movable link's inertia is not positive definite."""
+        if any(self.path in w and INERTIA_REPLACED in w for w in self.warnings):
+            return
+        self.warn(at, "%s (ixx %g iyy %g izz %g ixy %g ixz %g iyz %g): %s"
+                  % (INERTIA_REPLACED, *inertia, "each moment taken as 1 kg m^2, as Gazebo's "
+                     "ODE takes it (said once per file)"))
 
     def friction(self, collision: Element) -> float:
         """<surface><friction><ode><mu> of a collision (SDF's default 1)."""

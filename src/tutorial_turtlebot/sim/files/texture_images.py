@@ -4,9 +4,11 @@ and no pybullet here.
 
 An image named by a mesh is looked for as written (relative: beside the mesh), then by its last
 part beside the mesh and in ``../materials/textures`` (a Gazebo model folder's place for them).
-It is used only if it is a regular PNG or JPEG file of at most MAX_MESH_SIDE_FILE_BYTES and
-MAX_TEXTURE_SIDE px a side: what pybullet's image loader (stb_image) reads. Otherwise its part
-keeps its colour and ``texture_line`` says why in one line.
+It is used only if it is a regular PNG or JPEG file (what pybullet's image loader, stb_image,
+reads) of at most MAX_MESH_SIDE_FILE_BYTES and MAX_IMAGE_SIDE px a side. Otherwise its part keeps
+its colour and ``texture_line`` says why in one line. An image over MAX_TEXTURE_SIDE px a side is
+drawn from a copy halved until it fits (``fit_halvings``): ``TextureInfo`` gives its size as
+drawn, and obj_writer.texture_copy halves it so.
 """
 import hashlib
 import io
@@ -20,7 +22,9 @@ from .file_read import MAX_MESH_SIDE_FILE_BYTES
 from .mesh_side_files import read_file
 from .mesh_types import MeshError
 
-MAX_TEXTURE_SIDE = 4096      # px: a larger texture image is not drawn (its part keeps its colour)
+MAX_TEXTURE_SIDE = 4096      # px: a larger texture image is drawn from a copy halved to fit
+MAX_IMAGE_SIDE = 8192        # px: a larger one is not read (its part keeps its colour); Pillow
+#                              holds 256 MB to halve an 8192 x 8192 RGBA image
 MIN_HALVED_SIDE = 8          # px: halving stops at this side (a texture is never dropped)
 
 
@@ -63,8 +67,8 @@ class TextureInfo:
     """A usable texture file as it is now."""
 
     digest: str   # sha256 (hex) of its bytes
-    width: int    # px
-    height: int   # px
+    width: int    # px, as drawn (after fit_halvings)
+    height: int   # px, as drawn
 
     @property
     def pixels(self) -> int:
@@ -89,6 +93,8 @@ def texture_info(path: str) -> Optional[TextureInfo]:
         size = image_size(data) if image_problem(data) is None else None
         if len(_infos) > 4096:
             _infos.clear()
+        if size:
+            size = halved_size(size[0], size[1], fit_halvings(*size))
         _infos[key] = (TextureInfo(hashlib.sha256(data).hexdigest(), *size) if size else None)
     return _infos[key]
 
@@ -106,7 +112,7 @@ def image_size(data: bytes) -> Optional[Tuple[int, int]]:
 
 def image_problem(data: bytes) -> Optional[str]:
     """Why the bytes of an image file are no texture drawn here: not PNG or baseline/progressive
-    JPEG (what pybullet's stb_image reads), or wider or taller than MAX_TEXTURE_SIDE px; None if
+    JPEG (what pybullet's stb_image reads), or wider or taller than MAX_IMAGE_SIDE px; None if
     they are one."""
     if data[:8] != b"\x89PNG\r\n\x1a\n" and data[:3] != b"\xff\xd8\xff":
         return "neither a PNG nor a JPEG file"
@@ -115,9 +121,18 @@ def image_problem(data: bytes) -> Optional[str]:
         return "a JPEG file without a frame size this reader takes"
     if size is None or 0 in size:
         return "a broken image file"
-    if max(size) > MAX_TEXTURE_SIDE:
-        return "%d x %d px, more than %d px a side" % (size[0], size[1], MAX_TEXTURE_SIDE)
+    if max(size) > MAX_IMAGE_SIDE:
+        return "%d x %d px, more than %d px a side" % (size[0], size[1], MAX_IMAGE_SIDE)
     return None
+
+
+def fit_halvings(width: int, height: int) -> int:
+    """How many times an image of ``width`` x ``height`` px is halved to be drawn: until no
+    side is over MAX_TEXTURE_SIDE px (0 for most)."""
+    halvings = 0
+    while max(halved_size(width, height, halvings)) > MAX_TEXTURE_SIDE:
+        halvings += 1
+    return halvings
 
 
 def jpeg_size(data: bytes) -> Optional[Tuple[int, int]]:

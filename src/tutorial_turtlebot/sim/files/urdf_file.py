@@ -24,9 +24,12 @@ from . import xml_reader
 from .asset_uri import resolve_uri
 from ..kinematics import Vector3, transform_from_xyz_rpy
 from .mesh_file import load_mesh
-from ...robot_models import urdf_path  # noqa: F401 (where its users import it from)
-from .robot_plugins import RobotPlugins, read_plugins
+from ...robot_models import urdf_path
+from .robot_plugin_types import RobotPlugins
+from .robot_plugins import read_plugins
 from .xml_reader import Element, XmlReader
+
+REEXPORTED = (urdf_path,)  # re-exported: the sim and the tests import urdf_path from here
 
 NAMED = ("robot", "link", "joint", "material")  # elements that errors call by name
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic", "floating", "planar")
@@ -70,7 +73,10 @@ class Collision:
 
 @dataclass(frozen=True)
 class Visual:
-    """A visual shape placed at ``origin`` in its link frame; ``rgba`` in 0..1, None if uncoloured."""
+    """A visual shape placed at ``origin`` in its link frame.
+
+    ``rgba`` is in 0..1, None if uncoloured.
+    """
 
     origin: Origin
     geometry: Geometry
@@ -291,7 +297,7 @@ class _Reader(XmlReader):
             if joint.child in parent_of:
                 first = parent_of[joint.child]
                 self.fail(elem, "link %r already has a parent, joint %r (line %s)"
-                           % (joint.child, first.get("name"), first.line))
+                          % (joint.child, first.get("name"), first.line))
             joints[joint.name] = joint
             parent_of[joint.child] = elem
         self._check_tree(root, links, joints)
@@ -306,7 +312,7 @@ class _Reader(XmlReader):
             self.fail(root, "no root link: every link is the child of a joint (a loop)")
         if len(roots) > 1:
             self.fail(root, "%d root links (%s): links must form one tree joined by joints"
-                       % (len(roots), ", ".join(roots)))
+                      % (len(roots), ", ".join(roots)))
         below: Dict[str, List[str]] = {}
         for joint in joints.values():
             below.setdefault(joint.parent, []).append(joint.child)
@@ -330,7 +336,7 @@ class _Reader(XmlReader):
         if len(reached) < len(links):
             lost = [name for name in links if name not in reached]
             self.fail(root, "links %s form a loop cut off from root link %r"
-                       % (", ".join(lost), roots[0]))
+                      % (", ".join(lost), roots[0]))
 
     def _link(self, elem, materials) -> Link:
         name = self._name(elem)
@@ -401,7 +407,7 @@ class _Reader(XmlReader):
             scale = mesh_scale(shape.get("scale"))
             if scale is None:
                 self.fail(shape, "scale=%r is not three non-zero numbers (x y z factors)"
-                           % shape.get("scale"), owner)
+                          % shape.get("scale"), owner)
             try:
                 path = mesh_path(uri, self.base_dir, scale)
             except UserError as err:

@@ -7,9 +7,9 @@ What is read follows Gazebo 11 (sdformat 9) element by element, as sdf_elements'
 cylinder, sphere, plane, one extruded polyline, a Collada, STL or OBJ mesh: mesh_file), poses
 relative to the parent or to a named frame (sdf_frames), colours and textures (sdf_looks),
 ``<include>``s of model folders found as Gazebo finds them (asset_uri) nested to
-MAX_INCLUDE_DEPTH, actors (world_actors), the first ``<state>``'s model poses and the world's
-lights (world_lights). A movable link keeps its ``<inertial>`` (SDF's defaults where absent)
-and each collision its ``<surface><friction><ode><mu>``.
+MAX_INCLUDE_DEPTH, actors (world_actors), the first ``<state>``'s model poses (sdf_saved_state)
+and the world's lights (world_lights). A movable link keeps its ``<inertial>`` (SDF's defaults
+where absent) and each collision its ``<surface><friction><ode><mu>``.
 
 Nothing Gazebo reads refuses a world. An element not simulated (a heightmap, a road, a world
 model's sensor, a plugin ...) is left out with one warning line per kind and world
@@ -44,6 +44,7 @@ from .sdf_frames import MODEL_FRAME, WORLD_FRAME, Frames
 from .sdf_geometry import clean_polygon, normal_pose
 from .sdf_inertia import InertiaReader
 from .sdf_looks import LookReader
+from .sdf_saved_state import saved_poses, with_saved_pose
 from .world_actors import MAX_WAYPOINTS, read_actor
 from .world_lights import Light, light_of, light_pose
 from .world_types import DEFAULT_RGBA, KINDS, Actor, Link, Model, Shape, World
@@ -182,17 +183,21 @@ class _Loader(InertiaReader, LookReader, XmlReader):
         """The World made of ``world``'s top-level models, includes and actors, placed in
         ``parent``: the models in file order, then the actors (Gazebo's World::LoadEntities)."""
         models: List[Model] = []
-        saved = _saved_poses(world)
-        nodes = [_with_saved_pose(n, saved) if n.tag in ("model", "include", "actor") else n
+        saved = saved_poses(world)
+        nodes = [with_saved_pose(n, saved) if n.tag in ("model", "include", "actor") else n
                  for n in world.children]
         frames = self.frames(parent, WORLD_FRAME, [n for n in nodes if n.tag in (
             "model", "include", "actor", "frame")])
         is_world = world.tag == "world"
         for node in nodes:
+            before = len(self.shapes)
             if node.tag == "model":
-                models.append(self.top_model(node, frames.place(node, parent)))
+                self._unless_taken(models, node, [self.top_model(node, frames.place(node,
+                                                                                    parent))],
+                                   before)
             elif node.tag == "include":
-                models.extend(self.include(node, parent, "", frames=frames))
+                self._unless_taken(models, node,
+                                   self.include(node, parent, "", frames=frames), before)
             elif node.tag == "actor" and is_world:
                 self.actor(node, frames.place(node, parent))
             elif node.tag == "light" and is_world:
@@ -204,6 +209,20 @@ class _Loader(InertiaReader, LookReader, XmlReader):
         return World(name, self.path, tuple(m.name for m in models), tuple(self.shapes),
                      tuple(models), tuple(self.warnings), tuple(self.lights),
                      tuple(actor for actor, _ in self.actors))
+
+    def _unless_taken(self, models: List[Model], node: Element, new: List[Model],
+                      shapes_before: int) -> None:
+        """Append the top-level ``new`` models read from ``node`` to ``models``; but a model
+        whose name an earlier one has is left out, with the shapes it added (those after
+        ``shapes_before``) and one warning: Gazebo 11's World::LoadModel does not insert it
+        ("already exists"), so its services and /gazebo/model_states know the first alone."""
+        for model in new:
+            if any(m.name == model.name for m in models):
+                del self.shapes[shapes_before:]
+                self.warn_short(node, "a second model named %s is left out, as Gazebo leaves "
+                                      "it out (\"already exists\")" % model.name)
+            else:
+                models.append(model)
 
     def begin_model(self) -> None:
         """Start collecting the links and joints of a new top-level model or actor."""
@@ -419,8 +438,9 @@ class _Loader(InertiaReader, LookReader, XmlReader):
              static: bool) -> Optional[Tuple[Tuple[float, ...], str]]:
         """(scale, absolute file) of a <mesh>, its file read once here (unless ``read_meshes``
         is False) so that a bad one is refused with this line. None, with a warning, for a
-        file found nowhere, a Collada file that cannot be read, or a <submesh>: Gazebo loads
-        the link without that geometry (this sim too, for a submesh)."""
+        file found nowhere, a Collada file that cannot be read, a <submesh> or a scale with a
+        factor 0: Gazebo loads the link without that geometry (this sim too, for a submesh),
+        or with one that has no extent."""
         from .mesh_file import SUFFIXES, MeshUnreadable, load_mesh
         uri_node = geo.child("uri")
         if uri_node is None or not uri_node.value:
@@ -433,6 +453,12 @@ class _Loader(InertiaReader, LookReader, XmlReader):
         if scale_node is not None:
             scale = self.floats(scale_node, 3, finite=False)
             problem = limits.scale_problem(scale, "<scale>")
+            if problem and 0 in scale and not limits.scale_problem(
+                    [v or 1.0 for v in scale], "<scale>"):
+                self.warn_short(scale_node, "%s left out: its <scale> %s has a factor 0, so it "
+                                            "has no extent (Gazebo draws and hits nothing "
+                                            "there either)" % (name, scale_node.value))
+                return None
             if problem:
                 self.fail_bare(scale_node, problem)
         try:
@@ -482,37 +508,6 @@ class _Loader(InertiaReader, LookReader, XmlReader):
             self.fail_bare(polyline, "<polyline> must be a simple polygon of at least 3 corners "
                                      "(not crossing itself)")
         return cleaned
-
-
-def _saved_poses(world: Element) -> Dict[str, Element]:
-    """The ``<pose>`` of each model in the world's first ``<state>`` (a world saved by Gazebo),
-    by model name. Gazebo starts the world in that state: a model it names stands there, not
-    where its own ``<pose>`` puts it; models the state names that are not in the world, its
-    links' poses and its sim time are not used here."""
-    state = world.child("state")
-    if state is None:
-        return {}
-    poses = {}
-    for model in state.all("model"):
-        pose = model.child("pose")
-        if model.attrib.get("name") and pose is not None and pose.value:
-            poses[model.attrib["name"]] = pose
-    return poses
-
-
-def _with_saved_pose(node: Element, saved: Dict[str, Element]) -> Element:
-    """A top-level ``<model>``, ``<actor>`` or named ``<include>`` with its pose from the
-    saved state."""
-    if node.tag in ("model", "actor"):
-        name = node.attrib.get("name", "")
-    else:
-        name_node = node.child("name")
-        name = name_node.value if name_node is not None else ""
-    pose = saved.get(name) if name else None
-    if pose is None:
-        return node
-    children = [c for c in node.children if c.tag != "pose"] + [pose]
-    return xml_reader.element(node.tag, node.attrib, node.line, children)
 
 
 def _check_names(world: World) -> None:

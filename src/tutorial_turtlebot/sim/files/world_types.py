@@ -164,4 +164,3 @@ class World:
             if s.name == name:
                 return s
         raise KeyError(name)
-

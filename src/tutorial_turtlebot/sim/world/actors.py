@@ -211,7 +211,7 @@ class ActorMotion:
         self.model = model
         # trajectories[id] is the last trajectory of that id, as Gazebo's map keeps it
         self.curves: Dict[int, PoseCurve] = {t.id: PoseCurve(t) for t in actor.trajectories
-                                              if t.waypoints}
+                                             if t.waypoints}
         self.spans: List[Tuple[int, float, float]] = []   # (id, start, end) s in the script
         start = 0.0
         for trajectory in actor.trajectories:

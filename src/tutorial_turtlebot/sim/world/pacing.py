@@ -86,7 +86,8 @@ class Pacer:
         return None
 
     def achieved(self, sim_time: float) -> Optional[float]:
-        """Factor achieved since the last call (None if no wall time passed); starts a new window."""
+        """Factor achieved since the last call (None if no wall time passed); starts a new
+        window."""
         now = self._clock()
         wall = now - self._window_wall
         if wall <= 0:

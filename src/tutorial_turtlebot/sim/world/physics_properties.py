@@ -70,8 +70,8 @@ def validate(props: PhysicsProperties) -> None:
     """ValueError (one line) for properties this simulator cannot run."""
     if not (math.isfinite(props.time_step)
             and MIN_TIME_STEP <= props.time_step <= MAX_TIME_STEP):
-        raise ValueError("time_step %r s is outside %g..%g" % (props.time_step, MIN_TIME_STEP,
-                                                              MAX_TIME_STEP))
+        raise ValueError("time_step %r s is outside %g..%g"
+                         % (props.time_step, MIN_TIME_STEP, MAX_TIME_STEP))
     if not (math.isfinite(props.max_update_rate) and props.max_update_rate >= 0):
         raise ValueError("max_update_rate %r must be >= 0 (0 = as fast as possible)"
                          % props.max_update_rate)
@@ -79,7 +79,7 @@ def validate(props: PhysicsProperties) -> None:
     # (a positive rate whose product with the step underflows to 0 is too slow too, not "as
     # fast as possible": 5e-324 Hz)
     if too_slow(props.real_time_factor) or (props.max_update_rate > 0
-                                             and props.real_time_factor == 0):
+                                            and props.real_time_factor == 0):
         raise ValueError("max_update_rate %r is below %g at time_step %g (a real-time factor "
                          "of at least %g; 0 = as fast as possible)"
                          % (props.max_update_rate, MIN_REAL_TIME_FACTOR / props.time_step,

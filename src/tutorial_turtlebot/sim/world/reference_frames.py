@@ -15,9 +15,10 @@ import math
 from typing import Sequence, Tuple
 
 # the world API's pose type and conversions are kinematics' own
-from ..kinematics import (IDENTITY, IDENTITY_QUAT, Pose, Quat, quat_from_rpy,  # noqa: F401
-                         rpy_from_quat, to_body)
+from ..kinematics import IDENTITY, Pose, Quat, quat_from_rpy, rpy_from_quat, to_body
 from ..kinematics import Vector3 as Vec
+
+REEXPORTED = (IDENTITY, quat_from_rpy, rpy_from_quat)  # used as rf.* by world/ and the tests
 
 Twist = Tuple[Vec, Vec]
 ZERO_TWIST: Twist = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
@@ -84,7 +85,8 @@ def relative_twist(twist: Twist, frame_twist: Twist, frame_orientation: Quat) ->
 
 
 def model_twist_to_world(twist: Twist, frame_orientation: Quat) -> Twist:
-    """set_model_state's twist given in a frame: rotated into the world, frame velocity not added."""
+    """set_model_state's twist given in a frame: rotated into the world, frame velocity not
+    added."""
     return rotate(frame_orientation, twist[0]), rotate(frame_orientation, twist[1])
 
 

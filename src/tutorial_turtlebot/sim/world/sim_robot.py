@@ -20,8 +20,9 @@ from ..devices.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController
 from ..devices.lidar import (LaserConfig, as_real_driver, laser_config, ranges_from_distances,
                              ray_directions)
 from ..kinematics import Pose
-from ..engine.physics import GRAVITY, RobotBody, WorldPhysics
-from ..files.robot_plugins import CameraSensor, LaserSensor, RobotPlugins
+from ..engine.physics import GRAVITY, WorldPhysics
+from ..engine.robot_body import RobotBody
+from ..files.robot_plugin_types import CameraSensor, LaserSensor, RobotPlugins
 from .schedule import NS_PER_S, RateSchedule
 from ..files.urdf_file import RobotDescription
 from ..files.urdf_meshes import texture_warnings
@@ -36,6 +37,8 @@ IMU_ACCEL_TIME_CONSTANT = 0.02
 # A camera link looks along its +x (Gazebo); the image's optical frame looks along z with x
 # right and y down. Columns: the optical axes in the link frame.
 LINK_TO_OPTICAL = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
+
+
 def normalize_namespace(namespace: str) -> str:
     """``"tb3_0"``, ``"/tb3_0/"`` -> ``"/tb3_0/"``; ``""`` and ``"/"`` -> ``""`` (the root);
     UserError for a name ROS does not allow (graph resource names: letters, digits, _, /) or

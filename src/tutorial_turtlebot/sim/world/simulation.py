@@ -10,7 +10,7 @@ import math
 from dataclasses import dataclass
 from typing import Dict, List, Optional, Tuple
 
-from ...errors import UserError
+from ...errors import RequestError, UserError
 from ..files import limits
 from ..engine.applied_forces import AppliedForces
 from ..kinematics import quat_from_yaw
@@ -22,9 +22,8 @@ from .sim_robot import ImuState, OdomState, RobotOptions, SimRobot, normalize_na
 from .spawn_check import landed_pose, model_of_body, overlap_warning
 from ..files.urdf_file import RobotDescription, read_urdf, urdf_path
 from .actors import actor_motions
-from .world_models import (ENTITY_EXISTS, ModelRegistry, RequestError, RobotModel,
-                           models_of_world, robot_model_name, spawn_failure, spawn_refusal,
-                           urdf_model)
+from .world_models import (ENTITY_EXISTS, ModelRegistry, RobotModel, models_of_world,
+                           robot_model_name, spawn_failure, spawn_refusal, urdf_model)
 from ..engine import gui_window
 from ..files.world_catalogue import WORLD_SUFFIXES, resolve_world
 from ..files.world_sdf import load_world
@@ -44,8 +43,9 @@ class SimConfig:
     y: Optional[float] = None
     z: float = 0.0
     yaw: Optional[float] = None
-    camera: Optional[bool] = None        # None: the URDF's camera, if it has one; False: none;
-                                         # True on a burger: the AutoRace burger's URDF
+    # camera: None: the URDF's camera, if it has one; False: none; True on a burger: the
+    # AutoRace burger's URDF
+    camera: Optional[bool] = None
     lidar_model: str = "gazebo"          # gazebo: as the URDF declares; lds01: the real driver
     odom_source: Optional[str] = None    # None: the URDF's odometrySource
     clamp_cmd_vel: bool = True           # hold commands to the model's limits, as the firmware
@@ -136,10 +136,7 @@ class Simulation:
             x, y, z, yaw = self.spawn
             pose = landed_pose(self.physics, description, ((x, y, z), quat_from_yaw(yaw)))
             self.spawn = (x, y, pose[0][2], yaw)
-            try:
-                self.robot = self.add_robot(self.robot_name, "", description, pose, options)
-            except RequestError as err:
-                raise UserError(str(err)) from None
+            self.robot = self.add_robot(self.robot_name, "", description, pose, options)
         if config.gui:
             gui_window.look_at(self.physics.client, self.spawn[:3], self.spawn[3])
         self._reset_schedules()

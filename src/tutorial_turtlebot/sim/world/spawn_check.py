@@ -16,9 +16,16 @@ the robot: if it lies more than LIFT_TOLERANCE above the requested z, the root l
 it (same x, y and orientation); otherwise the pose is kept as given (a robot above the floor
 falls, as in Gazebo). So a surface counts only if it is below the robot's own top at the
 requested pose: a table top, a shelf, anything above the robot's head is never climbed onto (the
-robot stands under it), and a floor higher than the robot itself (a 0.3 m stage under a robot
-asked for z 0) is not found either: the robot overlaps it, and the warning proposes its top as
-z_pos. Movable models and other robots are no floor (the rays pass them by).
+robot stands under it), and a floor higher than the robot itself (a 0.3 m stage on the ground,
+under a robot asked for z 0) is not found either: the robot overlaps it, and the warning
+proposes its top as z_pos. Movable models and other robots are no floor (the rays pass them by).
+
+**Under the ground.** When the rays meet nothing at all from the robot's top down to
+BURIED_DEPTH below the requested z, the robot has no floor below it: it stands under a world's
+ground (a terrain mesh with no ground plane beneath, 0.3 m above the requested z, say) and
+would fall for ever. Then it is put on the lowest static surface above it that rays cast down
+from BURIED_DEPTH above the requested z meet (a mesh's triangles count from either side), the
+highest such over its footprint; where there is none either, the pose is kept.
 
 **Overlap.** Once the robot is placed: Bullet's closest points between its body and every other
 body near it. A penetration deeper than OVERLAP_DEPTH (a TurtleBot3's caster dips 5 mm below its
@@ -41,6 +48,7 @@ from ..files.mesh_file import load_mesh
 from ..files.world_types import Shape, World
 
 LIFT_TOLERANCE = 0.001   # m: a floor at most this above the requested z leaves the pose as given
+BURIED_DEPTH = 100.0     # m: nothing this far below a robot: it is under the ground (see above)
 OVERLAP_DEPTH = 0.01     # m: a penetration at most this deep is no overlap (resting contacts)
 RING_POINTS = 12         # rays on each of the two circles about the root (and one at it)
 PROPOSAL_MARGIN = 0.01   # m: the rays that find a proposed z_pos start this above the model
@@ -109,10 +117,16 @@ def landed_pose(physics, description, pose: Pose) -> Pose:
     top, reach = robot_extent(collision_points(description), orientation)
     if not top > LIFT_TOLERANCE:
         return pose
-    floors = physics.surfaces_below(footprint_points(x, y, reach), z + top, z)
+    points = footprint_points(x, y, reach)
+    floors = physics.surfaces_below(points, z + top, z)
     floor = float(np.nanmax(floors)) if not np.all(np.isnan(floors)) else -math.inf
     if floor > z + LIFT_TOLERANCE:
         return (x, y, floor), orientation
+    if floor == -math.inf and np.all(np.isnan(
+            physics.surfaces_below(points, z + top, z - BURIED_DEPTH))):
+        grounds = physics.surfaces_below(points, z + BURIED_DEPTH, z + top, lowest=True)
+        if not np.all(np.isnan(grounds)):          # under the ground: onto it
+            return (x, y, float(np.nanmax(grounds))), orientation
     return pose
 
 

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from typing import Optional
 from xml.etree import ElementTree
 
+from ...errors import RequestError
 from . import reference_frames as rf
 from ..files import limits
 from ..files import xml_reader
@@ -37,7 +38,7 @@ from ..kinematics import xyz_rpy_from_pose
 from ..files.urdf_file import RobotDescription, read_urdf_element
 from ..files.urdf_meshes import absolute_meshes, mesh_paths
 from ..engine.world_bullet import MOVABLE_KINDS
-from .world_models import RequestError, spawn_failure, spawn_refusal
+from .world_models import spawn_failure, spawn_refusal
 from ..files.world_sdf import load_model_xml
 from ..files.world_types import World
 from ..files.xml_reader import Element
@@ -45,11 +46,13 @@ from ..files.xml_reader import Element
 MAX_XML_BYTES = 1_000_000
 # What one spawn may cost the loop (it builds the bodies between two steps, while physics,
 # /clock and every other request wait): refused before anything is built.
-MAX_SPAWN_SHAPES = 1000         # collisions and visuals, a polyline's triangles and a mesh's
-                                # colour parts counted one each (the house world holds ~600)
+# collisions and visuals, a polyline's triangles and a mesh's colour parts counted one each
+# (the house world holds ~600)
+MAX_SPAWN_SHAPES = 1000
 MAX_POLYLINE_POINTS = 256       # corners of one polyline (cut into triangles, one body each)
-MAX_SPAWN_TRIANGLES = 200_000   # the mesh triangles of one spawn, after their files are read
-                                # (a static one of 180,000 takes the loop 1.2 s to build)
+# the mesh triangles of one spawn, after their files are read (a static one of 180,000 takes
+# the loop 1.2 s to build)
+MAX_SPAWN_TRIANGLES = 200_000
 MAX_MOVABLE_MESH_VERTICES = 100_000  # a movable mesh collides as the hull of its vertices
 PREPARE_SECONDS = 30.0          # wall s to read and check a spawn's text and files
 _PREPARE_LOCK = threading.Lock()   # one spawn is read at a time (the mesh caches are shared)
@@ -86,7 +89,8 @@ def _check_size(xml: str) -> None:
         raise spawn_failure("model_xml is empty")
 
 
-def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf") -> SpawnRequest:
+def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY,
+                kind: str = "sdf") -> SpawnRequest:
     """Check and parse a spawn of ``xml`` as model ``name`` at world ``pose``. ``kind`` is the
     service called: "sdf" takes SDF or URDF (as Gazebo's spawn_sdf_model does), "urdf" only
     URDF. A robot's errors name it "model_xml of <name>", others "model_xml". The request
@@ -226,4 +230,3 @@ def placed(pose: rf.Pose, frame: Optional[rf.Pose]) -> rf.Pose:
     if problem:
         raise ValueError(problem)
     return pose[0], limits.unit_quaternion(pose[1])
-

@@ -12,18 +12,15 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from ...errors import UserError
+from ...errors import RequestError, UserError
 from ..engine import urdf_loader
 from ..engine.bodies import Body
+from ..engine.client import Client
 from ..engine.world_bullet import build_world, link_com_pose
 from . import reference_frames as rf
 from ..kinematics import pose_from_xyz_rpy
 from .reference_frames import Pose, Twist
 from ..files.world_types import World
-
-
-class RequestError(Exception):
-    """A world request Gazebo would refuse: ``str(err)`` is its status message, one line."""
 
 
 SPAWN_FAILURE = "SpawnModel: Failure - "   # how Gazebo's spawn services begin a refusal
@@ -37,9 +34,12 @@ def spawn_failure(problem: str) -> RequestError:
 
 @contextmanager
 def spawn_refusal():
-    """Turn a UserError raised inside into the spawn's refusal: a RequestError of its line."""
+    """Turn a UserError raised inside into the spawn's refusal: a RequestError of its line (a
+    RequestError, already a refusal, goes on as it is)."""
     try:
         yield
+    except RequestError:
+        raise
     except UserError as err:
         raise spawn_failure(str(err)) from None
 
@@ -267,7 +267,7 @@ class UrdfModel(WorldModel):
 
 @dataclass
 class RobotModel(WorldModel):
-    """A robot with its plugins (world.sim_robot.SimRobot): its body (engine.physics.RobotBody)
+    """A robot with its plugins (world.sim_robot.SimRobot): its body (robot_body.RobotBody)
     resets, leaves and is built again as a robot does, its wheels braked."""
 
     robot_body: Any = None
@@ -363,9 +363,9 @@ class ModelRegistry:
         raise KeyError(name)
 
 
-def models_of_world(world: World, bodies: Dict[str, Body], client: int) -> List[SdfModel]:
+def models_of_world(world: World, bodies: Dict[str, int], client: Client) -> List[SdfModel]:
     """The models of a world built by world_bullet.build_world (shape name -> body id) in
-    pybullet client ``client``."""
+    pybullet ``client``."""
     out = []
     for spec in world.model_specs:
         model_pose = pose_from_xyz_rpy(spec.pose)

@@ -8,7 +8,7 @@ import pytest
 
 from tutorial_turtlebot.gazebo.impl import connection_caps
 from tutorial_turtlebot.gazebo.impl.connection_caps import (ConnectionCaps, ConnectionWatch,
-                                                          ThrottledLines, unsent_bytes)
+                                                            ThrottledLines, unsent_bytes)
 
 pytest.importorskip("rosgraph")
 
@@ -132,6 +132,7 @@ def test_wrapped_handlers_refuse_the_excess_with_an_error_header_and_close():
     caps.service_done("/get")        # ServiceImpl.handle returned
     server.service_connection_handler(c, None, {"service": "/get"})
     assert server.services == ["/get", "/get"]
+    del a_peer   # the admitted subscriber's end of its connection: held open until here
 
 
 class FakeConnection:

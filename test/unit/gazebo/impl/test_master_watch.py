@@ -125,7 +125,7 @@ def test_the_sim_registers_again_with_a_restarted_master(ros):
     running.append(master.process)
     assert wait_for(lambda: sim_registered(master), REGISTERED_WITHIN, 0.02), \
         "not registered again within %.0f s: %s\n%s" % (REGISTERED_WITHIN, master.state(),
-                                                         sim.output)
+                                                        sim.output)
     took = time.monotonic() - restarted
     assert wait_for(lambda: master.param("/robot_description") == DESCRIPTION, 2.0)
     assert master.param("/use_sim_time") is True

@@ -8,7 +8,7 @@ import pytest
 from rospy.exceptions import TransportTerminated
 
 from tutorial_turtlebot.gazebo.impl.nonblocking_publisher import (Backlog, NonBlockingConnection,
-                                                      make_nonblocking)
+                                                                  make_nonblocking)
 
 
 class Transport:
@@ -94,8 +94,9 @@ def test_a_reading_subscriber_gets_every_message_in_order(pair):
 
 
 def test_a_stalled_subscriber_never_blocks_and_gets_the_newest_message(pair):
-    """With nobody reading, 2000 writes of 10 kB return (the kernel holds about 128 kB). When the reader catches up and the backlog is flushed, every frame it gets is
-    whole, in order, and the last is the newest written; the ones in between were dropped."""
+    """With nobody reading, 2000 writes of 10 kB return (the kernel holds about 128 kB). When
+    the reader catches up and the backlog is flushed, every frame it gets is whole, in order,
+    and the last is the newest written; the ones in between were dropped."""
     writer, reader = pair
     backlog = Backlog()
     connection = NonBlockingConnection(Transport(writer), backlog)
@@ -236,3 +237,20 @@ def test_a_kept_message_for_a_subscriber_that_went_away_closes_its_connection(pa
     assert transport.done
     with pytest.raises(TransportTerminated):  # rospy then drops the connection
         connection.write_data(message(3, 300))
+
+
+def test_each_write_runs_through_the_backlogs_timed_hook(pair):
+    """Backlog(timed): every write of its connections runs as timed(write, data), whose result
+    it returns (the node times them); without the hook the write runs directly."""
+    writer, reader = pair
+    calls = []
+
+    def timed(write, data):
+        calls.append(data)
+        return write(data)
+    connection = NonBlockingConnection(Transport(writer), Backlog(timed=timed))
+    assert connection.write_data(message(1, 300)) is True
+    assert calls == [message(1, 300)] and read_frames(reader) == [1]
+    untimed = NonBlockingConnection(Transport(writer), Backlog())
+    assert untimed.write_data(message(2, 300)) is True
+    assert calls == [message(1, 300)] and read_frames(reader) == [2]

@@ -18,8 +18,8 @@ from tf2_msgs.msg import TFMessage
 
 from tutorial_turtlebot.gazebo.impl.nonblocking_publisher import Backlog, make_nonblocking
 from tutorial_turtlebot.gazebo.impl.packed_messages import (PackedClock, PackedImu,
-                                                       PackedJointState, PackedLaserScan,
-                                                       PackedOdometry, PackedTransform)
+                                                            PackedJointState, PackedLaserScan,
+                                                            PackedOdometry, PackedTransform)
 
 SEQ = 4_000_000_123
 

@@ -8,7 +8,7 @@ import pytest
 
 from tutorial_turtlebot.gazebo.impl import tcpros_guard
 from tutorial_turtlebot.gazebo.impl.tcpros_guard import (HandshakeGuard, HandshakeRefused,
-                                                       read_header)
+                                                         read_header)
 
 
 def encode(fields: dict) -> bytes:

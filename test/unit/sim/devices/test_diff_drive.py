@@ -4,8 +4,8 @@ import math
 import pytest
 
 from tutorial_turtlebot.sim.devices.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR, SNAP_TOLERANCE,
-                                           DiffDriveController, body_twist, sanitize_command,
-                                           wheel_rim_speeds)
+                                                       DiffDriveController, body_twist,
+                                                       sanitize_command, wheel_rim_speeds)
 from tutorial_turtlebot.robot_models import MODEL_NAMES
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
 

@@ -6,7 +6,7 @@ import pytest
 
 from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.sim.devices.lidar import (LASER_MODELS, laser_config, ranges_from_distances,
-                                      ray_directions)
+                                                  ray_directions)
 
 GAZEBO = laser_config("gazebo")
 LDS01 = laser_config("lds01")
@@ -144,7 +144,10 @@ def test_lds01_index_90_is_left():
 def test_gazebo_index_90_is_90_25_degrees():
     """Gazebo's 6.28319/359 step: index 90 is 90.25 degrees, 359 repeats index 0."""
     rays = ray_directions(GAZEBO)
-    bearing = lambda i: math.degrees(math.atan2(rays[i, 1], rays[i, 0])) % 360.0  # noqa: E731
+
+    def bearing(i):
+        return math.degrees(math.atan2(rays[i, 1], rays[i, 0])) % 360.0
+
     assert bearing(90) == pytest.approx(90.25, abs=0.01)
     assert bearing(180) == pytest.approx(180.5, abs=0.01)
     assert bearing(270) == pytest.approx(270.75, abs=0.01)

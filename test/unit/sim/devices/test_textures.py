@@ -8,12 +8,11 @@ strong colours in its quadrants, its image written with zlib and struct.
 import os
 
 import numpy as np
-import pybullet
 import pytest
 
-from tutorial_turtlebot.sim.devices import camera
 from tutorial_turtlebot.sim.engine import rendering
-from tutorial_turtlebot.sim.files import texture_images
+from tutorial_turtlebot.sim.engine.client import Client
+from tutorial_turtlebot.sim.files import obj_writer, texture_images
 from tutorial_turtlebot.sim.engine import physics as physics_module
 from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
 from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
@@ -21,10 +20,10 @@ from tutorial_turtlebot.sim.files.mesh_file import cache_clear, load_mesh
 from tutorial_turtlebot.sim.files.obj_writer import write_obj_parts
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files import urdf_meshes
-from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
+from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
 
-from texture_fixtures import (BLUE, GREEN, QUADRANTS, RED, YELLOW, cube, png_bytes,  # noqa: F401
-                              quadrant_texture, write_textured_dae, write_textured_obj)
+from texture_fixtures import (QUADRANTS, cube, png_bytes, quadrant_texture, write_textured_dae,
+                              write_textured_obj)
 
 CUBE_X = 1.5          # m: the cube's face towards the robot (at the origin, facing +x)
 CUBE_SIDE = 0.6       # m
@@ -40,7 +39,8 @@ def fresh_caches():
 # --- fixtures: worlds ------------------------------------------------------------------------
 
 GROUND = """<model name="ground"><static>true</static><link name="l">
-  <collision name="c"><geometry><plane><normal>0 0 1</normal><size>20 20</size></plane></geometry></collision>
+  <collision name="c"><geometry><plane><normal>0 0 1</normal><size>20 20</size></plane></geometry>\
+</collision>
   <visual name="v"><geometry><plane><normal>0 0 1</normal><size>20 20</size></plane></geometry>
     <material><script><name>Gazebo/Grey</name></script></material></visual></link></model>"""
 
@@ -51,7 +51,8 @@ def mesh_model(name, uri, y=0.0, scale="0.6 0.6 0.6", material="", static=True):
     x, z = CUBE_X + CUBE_SIDE / 2, CUBE_SIDE / 2
     return """<model name="{n}"><static>{s}</static><pose>{x} {y} {z} 0 0 0</pose><link name="l">
   <inertial><mass>5</mass><inertia><ixx>0.3</ixx><iyy>0.3</iyy><izz>0.3</izz></inertia></inertial>
-  <collision name="c"><geometry><mesh><uri>{u}</uri><scale>{sc}</scale></mesh></geometry></collision>
+  <collision name="c"><geometry><mesh><uri>{u}</uri><scale>{sc}</scale></mesh></geometry>\
+</collision>
   <visual name="v"><geometry><mesh><uri>{u}</uri><scale>{sc}</scale></mesh></geometry>{m}</visual>
 </link></model>""".format(n=name, s=str(static).lower(), x=x, y=y, z=z, u=uri, sc=scale,
                           m=material)
@@ -72,7 +73,7 @@ def write_world(folder, *models):
     return str(path)
 
 
-# --- the camera ------------------------------------------------------------------------------------
+# --- the camera ----------------------------------------------------------------------------------
 
 @pytest.fixture(params=("tiny", "egl"))
 def renderer(request):
@@ -260,7 +261,7 @@ def test_textures_are_looked_for_as_gazebo_models_keep_them(tmp_path):
 
 @pytest.mark.parametrize("content, why", [
     (b"GIF89a" + b"\0" * 40, "neither a PNG nor a JPEG file"),
-    (None, "4097 x 2 px, more than 4096 px a side"),
+    (None, "8193 x 2 px, more than 8192 px a side"),
     ("fifo", "it is a FIFO, not a regular file"),
 ])
 def test_an_unusable_texture_is_one_line_and_the_colour(tmp_path, content, why):
@@ -269,13 +270,35 @@ def test_an_unusable_texture_is_one_line_and_the_colour(tmp_path, content, why):
     if content == "fifo":
         os.mkfifo(str(texture))
     elif content is None:
-        texture.write_bytes(png_bytes(np.zeros((2, 4097, 3), dtype=np.uint8)))
+        texture.write_bytes(png_bytes(np.zeros((2, 8193, 3), dtype=np.uint8)))
     else:
         texture.write_bytes(content)
     [part] = load_mesh(str(tmp_path / "box.obj")).parts
     assert part.texture is None and part.uvs is None and part.rgba == (0.0, 0.0, 1.0, 1.0)
     assert why in part.texture_problem and "\n" not in part.texture_problem
     assert part.texture_problem.startswith("box.obj: texture tex.png")
+
+
+def test_a_texture_over_4096_px_a_side_is_drawn_from_a_halved_copy(tmp_path):
+    """An 8192 px wide image (a large floor's, say) is drawn halved to 4096, not dropped: its
+    size as drawn counts in the texture budget, and the copy drawn is that size."""
+    pil = pytest.importorskip("PIL.Image")
+    write_textured_obj(tmp_path, kd="0 0 1", write_texture=False)
+    image = np.zeros((4, 8192, 3), dtype=np.uint8)
+    image[:, 4096:] = (255, 0, 0)
+    (tmp_path / "tex.png").write_bytes(png_bytes(image))
+    [part] = load_mesh(str(tmp_path / "box.obj")).parts
+    assert part.texture == str(tmp_path / "tex.png") and part.texture_problem is None
+    info = texture_images.texture_info(part.texture)
+    assert (info.width, info.height) == (4096, 4)
+    copy = tmp_path / "copies"
+    copy.mkdir()
+    name = obj_writer.texture_copy(part.texture, str(copy))
+    with pil.open(str(copy / name)) as drawn:
+        assert drawn.size == (4096, 4)
+        assert drawn.getpixel((100, 1)) == (0, 0, 0) and drawn.getpixel((4000, 1)) == (255, 0, 0)
+    with pil.open(str(copy / obj_writer.texture_copy(part.texture, str(copy), 1))) as smaller:
+        assert smaller.size == (2048, 4)      # the budget's halvings come on top (sides >= 8)
 
 
 def test_a_texture_larger_than_side_files_is_not_read(tmp_path, monkeypatch):
@@ -326,22 +349,25 @@ def test_a_urdf_mesh_is_drawn_textured(tmp_path, renderer):
         pytest.skip("EGL does not render on this machine")
     write_textured_obj(tmp_path)
     urdf = """<robot name="r"><link name="a">
-      <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
-      <visual><origin xyz="0 0.4 0"/><geometry><mesh filename="box.obj" scale="0.6 0.6 0.6"/></geometry></visual>
-      <visual><origin xyz="0 -0.4 0"/><geometry><mesh filename="box.obj" scale="0.6 0.6 0.6"/></geometry>
+      <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>\
+</inertial>
+      <visual><origin xyz="0 0.4 0"/><geometry><mesh filename="box.obj" scale="0.6 0.6 0.6"/>\
+</geometry></visual>
+      <visual><origin xyz="0 -0.4 0"/><geometry><mesh filename="box.obj" scale="0.6 0.6 0.6"/>\
+</geometry>
         <material name="m"><color rgba="1 0 1 1"/></material></visual></link></robot>"""
     text = urdf_meshes.bullet_urdf_text(ElementTree.fromstring(urdf), str(tmp_path))
     assert urdf_meshes.textured_urdf(text)
     (tmp_path / "r.urdf").write_text(text)
-    cid = pybullet.connect(pybullet.DIRECT)
+    client = Client.connect()
     try:
         if renderer == "egl":
-            assert rendering.enable_egl(cid)
-        pybullet.loadURDF(str(tmp_path / "r.urdf"), basePosition=(CUBE_X + 0.3, 0, 0.3),
-                          useFixedBase=True, physicsClientId=cid)
-        rendering.note_textures(cid)
+            assert rendering.enable_egl(client)
+        client.loadURDF(str(tmp_path / "r.urdf"), basePosition=(CUBE_X + 0.3, 0, 0.3),
+                        useFixedBase=True)
+        rendering.note_textures(client)
         spec = CameraSpec(width=320, height=240, hfov=1.085595, near=0.03, far=100.0, rate=30.0)
-        view = CameraRenderer(cid, spec, use_egl=renderer == "egl")
+        view = CameraRenderer(client, spec, use_egl=renderer == "egl")
         rotation = np.array([[0, 0, 1], [-1, 0, 0], [0, -1, 0]], dtype=float)  # optical, +x
         position = np.array([0.0, 0.0, 0.3])
         rgb, _ = view.render(position, rotation)
@@ -356,8 +382,8 @@ def test_a_urdf_mesh_is_drawn_textured(tmp_path, renderer):
         assert_textured(Fake, rgb, centre_y=0.4)
         assert looks(face_colour(Fake, rgb, -0.4, 0.3), (255, 0, 255))
     finally:
-        rendering.disable_egl(cid)
-        pybullet.disconnect(physicsClientId=cid)
+        rendering.disable_egl(client)
+        client.disconnect()
         urdf_meshes.cache_clear()
 
 
@@ -365,7 +391,8 @@ def test_a_urdf_robot_names_its_missing_texture_in_one_warning(tmp_path):
     from tutorial_turtlebot.sim.files.urdf_file import read_urdf
     write_textured_obj(tmp_path, texture="gone.png", kd="1 0 0", write_texture=False)
     (tmp_path / "r.urdf").write_text("""<robot name="r"><link name="a">
-      <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+      <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>\
+</inertial>
       <visual><geometry><mesh filename="box.obj"/></geometry></visual>
       <visual><origin xyz="1 0 0"/><geometry><mesh filename="box.obj"/></geometry></visual>
       </link></robot>""")

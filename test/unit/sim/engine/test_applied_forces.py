@@ -5,8 +5,7 @@ import math
 
 import pytest
 
-from tutorial_turtlebot.sim.world import reference_frames as rf
-from tutorial_turtlebot.sim.world.world_control import RequestError
+from tutorial_turtlebot.errors import RequestError
 
 from unit_helpers import ROBOT, WHEEL, at, box_sdf, run
 

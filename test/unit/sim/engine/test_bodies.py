@@ -7,6 +7,7 @@ import pybullet
 import pytest
 
 from tutorial_turtlebot.sim.engine.bodies import Body, Inertial, Joint
+from tutorial_turtlebot.sim.engine.client import Client
 from tutorial_turtlebot.sim.engine.urdf_loader import load_urdf
 
 # A 2 kg base (its centre of mass 0.1 m ahead of its frame) with an arm on a revolute joint about
@@ -50,12 +51,13 @@ def about_y(angle):
 
 
 def test_equal_handles_name_the_same_body():
-    assert Body(0, 3) == Body(0, 3) and hash(Body(0, 3)) == hash(Body(0, 3))
-    assert Body(0, 3) != Body(0, 4) and Body(0, 3) != Body(1, 3)
-    assert Body(0, 3) != (0, 3)                        # a tuple is no Body
-    assert len({Body(0, 3), Body(0, 3), Body(1, 3)}) == 2
-    assert {Body(2, 5): "x"}[Body(2, 5)] == "x"
-    assert repr(Body(2, 5)) == "Body(2, 5)"
+    a, b, c = Client(0), Client(1), Client(2)          # never connected: no call is made
+    assert Body(a, 3) == Body(a, 3) and hash(Body(a, 3)) == hash(Body(a, 3))
+    assert Body(a, 3) != Body(a, 4) and Body(a, 3) != Body(b, 3)
+    assert Body(a, 3) != (a, 3)                        # a tuple is no Body
+    assert len({Body(a, 3), Body(a, 3), Body(b, 3)}) == 2
+    assert {Body(c, 5): "x"}[Body(c, 5)] == "x"
+    assert repr(Body(c, 5)) == "Body(2, 5)"
 
 
 def test_root_link_and_the_base_frame(arm):

@@ -6,21 +6,22 @@ import numpy as np
 import pybullet
 import pytest
 
+from tutorial_turtlebot.errors import RequestError
 from tutorial_turtlebot.sim.engine import bullet_shapes
+from tutorial_turtlebot.sim.engine.client import Client
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world.world_control import WorldControl
-from tutorial_turtlebot.sim.world.world_models import RequestError
 
 from unit_helpers import rss_kb
 
 
 @pytest.fixture
 def client():
-    cid = pybullet.connect(pybullet.DIRECT)
-    bullet_shapes.track(cid)
-    yield cid
-    pybullet.disconnect(physicsClientId=cid)
-    bullet_shapes.forget_client(cid)
+    connected = Client.connect()
+    bullet_shapes.track(connected)
+    yield connected
+    connected.disconnect()
+    bullet_shapes.forget_client(connected)
 
 
 def obj_file(path, points):
@@ -50,8 +51,10 @@ def test_mesh_files_are_known_by_their_content(client, tmp_path):
     first = obj_file(tmp_path / "a.obj", corners)
     same = obj_file(tmp_path / "b.obj", corners)
     moved = obj_file(tmp_path / "c.obj", [(x + 1, y, z) for x, y, z in corners])
-    shape = lambda path: bullet_shapes.collision_shape(client, pybullet.GEOM_MESH,  # noqa: E731
-                                                       fileName=path)
+
+    def shape(path):
+        return bullet_shapes.collision_shape(client, pybullet.GEOM_MESH, fileName=path)
+
     assert shape(first) == shape(same) != shape(moved)
     vertices = np.array(corners, dtype=float)
     arrays = [bullet_shapes.collision_shape(client, pybullet.GEOM_MESH, vertices=v.tolist(),
@@ -62,13 +65,13 @@ def test_mesh_files_are_known_by_their_content(client, tmp_path):
 
 
 def test_an_untracked_client_builds_every_shape():
-    cid = pybullet.connect(pybullet.DIRECT)
+    client = Client.connect()
     try:
-        first, second = (bullet_shapes.collision_shape(cid, pybullet.GEOM_SPHERE, radius=0.1)
+        first, second = (bullet_shapes.collision_shape(client, pybullet.GEOM_SPHERE, radius=0.1)
                          for _ in range(2))
         assert first != second
     finally:
-        pybullet.disconnect(physicsClientId=cid)
+        client.disconnect()
 
 
 def test_past_the_budget_a_new_shape_is_refused_and_old_ones_still_come(client, monkeypatch):

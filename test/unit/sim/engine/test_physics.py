@@ -1,6 +1,6 @@
-"""WorldPhysics and RobotBody (engine/physics.py), directly: the client's set-up and step, its
-parameters, ray casts, the robots' collision bits, and a robot body's placement. What the
-Simulation makes of them is tested in sim/world/. No ROS master."""
+"""WorldPhysics and RobotBody (engine/physics.py, engine/robot_body.py), directly: the client's
+set-up and step, its parameters, ray casts, the robots' collision bits, and a robot body's
+placement. What the Simulation makes of them is tested in sim/world/. No ROS master."""
 import math
 
 import numpy as np
@@ -9,8 +9,8 @@ import pytest
 
 from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.sim.engine.physics import (FIRST_ROBOT_BIT, GRAVITY, MAX_ROBOTS,
-                                                   ROBOT_GROUPS, SPAWN_CLEARANCE, RobotBody,
-                                                   WorldPhysics)
+                                                   ROBOT_GROUPS, WorldPhysics)
+from tutorial_turtlebot.sim.engine.robot_body import SPAWN_CLEARANCE, RobotBody
 from tutorial_turtlebot.sim.engine.world_bullet import (ALL_COLLISION_GROUPS,
                                                         WORLD_COLLISION_GROUP)
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path

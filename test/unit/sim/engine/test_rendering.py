@@ -14,11 +14,12 @@ import pytest
 
 from tutorial_turtlebot.sim.engine import rendering
 from tutorial_turtlebot.sim.engine import physics as physics_module
+from tutorial_turtlebot.sim.engine.client import Client
 from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
 from tutorial_turtlebot.sim.engine.rendering import (BACKGROUND_RGB, CameraRenderer, validate_spec,
                                                      view_matrix)
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
+from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.engine.world_bullet import WORLD_COLLISION_GROUP
@@ -66,7 +67,7 @@ def test_impossible_cameras_are_refused_in_one_line(changes, words):
         validate_spec(spec)
     assert words in str(err.value) and "\n" not in str(err.value)
     with pytest.raises(UserError):
-        CameraRenderer(0, spec, use_egl=False)
+        CameraRenderer(Client(0), spec, use_egl=False)
 
 
 # --- view matrix ---------------------------------------------------------------------------------
@@ -88,16 +89,16 @@ def test_egl_loads_on_this_machine():
     # ENVIRONMENT-DEPENDENT: true where Mesa's EGL is installed (Debian libegl1 and
     # libgl1-mesa-dri, as tools/setup.sh installs them) or a GPU driver provides EGL.
     assert rendering.egl_available(), ("pybullet's EGL plugin does not render here: install "
-                                    "libegl1 and libgl1-mesa-dri")
-    cid = pybullet.connect(pybullet.DIRECT)
+                                       "libegl1 and libgl1-mesa-dri")
+    client = Client.connect()
     try:
-        assert rendering.enable_egl(cid) is True
-        assert rendering.enable_egl(cid) is True          # again: harmless
-        assert rendering.egl_enabled(cid)
+        assert rendering.enable_egl(client) is True
+        assert rendering.enable_egl(client) is True       # again: harmless
+        assert rendering.egl_enabled(client)
     finally:
-        rendering.disable_egl(cid)
-        pybullet.disconnect(cid)
-    assert not rendering.egl_enabled(cid)
+        rendering.disable_egl(client)
+        client.disconnect()
+    assert not rendering.egl_enabled(client)
 
 
 SILENT_START = r"""
@@ -135,11 +136,11 @@ def test_a_textured_world_with_a_camera_prints_nothing_on_stdout(tmp_path):
 def test_enable_egl_says_false_without_the_plugin(monkeypatch):
     monkeypatch.setattr(rendering, "_egl_works", None)
     monkeypatch.setattr(rendering, "egl_plugin_path", lambda: None)
-    assert rendering.enable_egl(0) is False
+    assert rendering.enable_egl(Client(0)) is False
     monkeypatch.setattr(rendering, "_egl_works", None)
     monkeypatch.setattr(rendering, "egl_plugin_path", lambda: "/nonexistent/eglRenderer.so")
     assert rendering.egl_available() is False            # the child process fails, not this one
-    rendering.disable_egl(12345)                          # nothing loaded: no error
+    rendering.disable_egl(Client(12345))                  # nothing loaded: no error
 
 
 # --- rendering the turtlebot3_world --------------------------------------------------------------
@@ -149,16 +150,16 @@ def _simulation(monkeypatch, model, renderer):
     after connect, before any body) when ``renderer`` is "egl"."""
     if renderer == "egl" and not rendering.egl_available():
         pytest.skip("EGL does not render on this machine (see test_egl_loads_on_this_machine)")
-    connect = pybullet.connect
+    connect = Client.connect
 
     def connect_with_egl(*args, **kwargs):
-        cid = connect(*args, **kwargs)
+        client = connect(*args, **kwargs)
         if renderer == "egl":
-            assert rendering.enable_egl(cid)
-        return cid
-    monkeypatch.setattr(physics_module.pybullet, "connect", connect_with_egl)
+            assert rendering.enable_egl(client)
+        return client
+    monkeypatch.setattr(physics_module.Client, "connect", connect_with_egl)
     sim = Simulation(SimConfig(model=model, camera=True))
-    monkeypatch.setattr(physics_module.pybullet, "connect", connect)
+    monkeypatch.setattr(physics_module.Client, "connect", connect)
     return sim
 
 

@@ -1,12 +1,13 @@
 """The texture budget of a pybullet client (texture_budget): which images are halved, how many
-times, and the one line that says so. Pure arithmetic: no pybullet call (any client id will
-do). No ROS master."""
+times, and the one line that says so. Pure arithmetic: no pybullet call (a Client that was
+never connected will do). No ROS master."""
 import pytest
 
 from tutorial_turtlebot.sim.engine import texture_budget
+from tutorial_turtlebot.sim.engine.client import Client
 from tutorial_turtlebot.sim.engine.texture_budget import TextureUse, halved_images, plan
 
-CID = -4321
+CID = Client(-4321)     # never connected: texture_budget keeps its state on it
 
 
 @pytest.fixture(autouse=True)

@@ -10,6 +10,7 @@ import pytest
 
 from texture_fixtures import mesh_world
 from tutorial_turtlebot.sim.engine import rendering, view_culling, world_bullet
+from tutorial_turtlebot.sim.engine.client import Client
 from tutorial_turtlebot.sim.engine.view_culling import outside_frustum, with_shadows
 
 # A camera at the origin looking along +x (optical frame: x right = -y, y down = -z, z = +x).
@@ -116,7 +117,7 @@ def _differing_pixels(a, b):
 def test_bodies_out_of_view_are_left_out_and_the_image_is_the_same(textured_world):
     sim, bodies = textured_world
     culling = sim.robot.camera.view_culling
-    assert culling is not None and sim.physics.client in rendering._textured_clients
+    assert culling is not None and sim.physics.client.textured
     culled, whole = _images(sim, culled=True), _images(sim, culled=False)
     # behind, left and far_right; behind_twin shares its drawing with the box in view
     assert culling.hidden_bodies == {bodies[name] for name in ("behind", "left", "far_right")}
@@ -129,7 +130,7 @@ def test_bodies_out_of_view_are_left_out_and_the_image_is_the_same(textured_worl
     keep, camera.view_culling = camera.view_culling, None
     behind = camera.render(sim.robot.camera_pose()[0], turned, depth=True)
     camera.view_culling = keep
-    view_culling._noted.pop(sim.physics.client)      # nothing left out any more
+    sim.physics.client.view_noted.clear()           # nothing left out any more
     assert _differing_pixels(camera.render(sim.robot.camera_pose()[0], turned, depth=True),
                              behind) == 0
 
@@ -175,22 +176,22 @@ def test_a_body_id_given_to_a_new_body_is_not_hidden(textured_world):
 
 def test_nothing_is_noted_without_egl(monkeypatch, tmp_path):
     monkeypatch.setattr(world_bullet, "egl_enabled", lambda cid: False)
-    cid = pybullet.connect(pybullet.DIRECT)
+    client = Client.connect()
     try:
         from tutorial_turtlebot.sim.files.world_sdf import load_world
         from tutorial_turtlebot.sim.files.world_catalogue import resolve_world
-        world_bullet.build_world(load_world(resolve_world("turtlebot3_world")[0]), cid)
-        assert cid not in view_culling._noted
+        world_bullet.build_world(load_world(resolve_world("turtlebot3_world")[0]), client)
+        assert not client.view_noted
     finally:
-        pybullet.disconnect(physicsClientId=cid)
+        client.disconnect()
 
 
 def test_disable_egl_forgets_the_client(textured_world):
     sim, _ = textured_world
-    cid = sim.physics.client
-    assert view_culling._noted.get(cid)
-    rendering.disable_egl(cid)             # (sim.close does it again: harmless)
-    assert cid not in view_culling._noted
+    client = sim.physics.client
+    assert client.view_noted
+    rendering.disable_egl(client)          # (sim.close does it again: harmless)
+    assert not client.view_noted
 
 
 def test_a_body_parked_far_below_leaves_the_others_hidden(textured_world):

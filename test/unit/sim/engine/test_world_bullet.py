@@ -6,7 +6,7 @@ import pybullet
 import pytest
 
 from tutorial_turtlebot.sim.engine.world_bullet import (PLANE_MIN_EXTENT, WORLD_COLLISION_GROUP,
-                                             WORLD_FRICTION, build_world)
+                                                        WORLD_FRICTION, build_world)
 from tutorial_turtlebot.sim.files.world_catalogue import WORLDS, resolve_world
 from tutorial_turtlebot.sim.files.world_sdf import load_world
 

@@ -13,8 +13,8 @@ from tutorial_turtlebot.sim.engine import rendering, texture_budget
 from tutorial_turtlebot.sim.files.mesh_file import cache_clear
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 
-from texture_fixtures import (BLUE, GREEN, QUADRANTS, RED, YELLOW, png_bytes,  # noqa: F401
-                              quadrant_texture, write_textured_obj)
+from texture_fixtures import (QUADRANTS, RED, png_bytes, quadrant_texture,
+                              write_textured_obj)
 import unit_paths
 
 CRATES = os.path.join(unit_paths.FIXTURES, "worlds", "textured", "max_style_crates.world")

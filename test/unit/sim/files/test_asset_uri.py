@@ -4,9 +4,9 @@ import os
 import pytest
 
 from tutorial_turtlebot.sim.files.asset_uri import (PACKAGE_MODELS, AssetError, AssetNotFound,
-                                              ModelLeftOut, ModelPath,
-                                              _ros_exported_model_paths, case_mismatch,
-                                              model_sdf_file, resolve_uri, split_uri)
+                                                    ModelLeftOut, ModelPath,
+                                                    _ros_exported_model_paths, case_mismatch,
+                                                    model_sdf_file, resolve_uri, split_uri)
 
 
 def make_model(folder, name, versions=(("1.6", "model.sdf"),)):
@@ -272,4 +272,4 @@ def test_a_missing_model_says_where_gazebos_models_are(tmp_path):
     with pytest.raises(AssetNotFound) as err:
         resolve_uri("model://MailBox/model.sdf", "/", path)
     assert "%s exists, whose name differs only in letter case" % (tmp_path / "mailbox"
-                                                                    / "model.sdf") in str(err.value)
+                                                                  / "model.sdf") in str(err.value)

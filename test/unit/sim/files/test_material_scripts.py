@@ -12,12 +12,13 @@ import pybullet
 import pytest
 
 from tutorial_turtlebot.sim.engine import rendering
+from tutorial_turtlebot.sim.engine.client import Client
 from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
 from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
 from tutorial_turtlebot.sim.engine.world_bullet import build_world
 from tutorial_turtlebot.sim.files import material_scripts
 from tutorial_turtlebot.sim.files.material_scripts import WHITE, MaterialScripts
-from tutorial_turtlebot.sim.files.robot_plugins import CameraSpec
+from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
 from tutorial_turtlebot.sim.files.world_sdf import load_world
 from tutorial_turtlebot.sim.files.world_types import DEFAULT_RGBA
 
@@ -245,7 +246,7 @@ def test_the_texture_is_drawn_upright_seen_from_above(tmp_path, renderer, kind, 
         pytest.skip("EGL does not render on this machine")
     model_folder(tmp_path, textured(), texture="quadrants.png")
     world = load_world(write_world(tmp_path, floor_model("floor", kind=kind, static=static)))
-    cid = pybullet.connect(pybullet.DIRECT)
+    cid = Client.connect()     # an engine Client (int(cid) is its id)
     try:
         if renderer == "egl":
             assert rendering.enable_egl(cid)

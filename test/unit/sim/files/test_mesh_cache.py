@@ -18,8 +18,6 @@ HERE = unit_paths.UNIT
 CAP = os.path.join(HERE, os.pardir, "fixtures", "gazebo_models", "mesh_pillar", "meshes")
 
 
-
-
 def test_the_cache_is_under_ros_home_else_the_xdg_cache():
     assert mesh_cache.cache_dir({"ROS_HOME": "/r", "XDG_CACHE_HOME": "/x"}) == \
         "/r/tutorial_turtlebot/mesh_cache"

@@ -372,7 +372,6 @@ def test_errors_are_one_line(tmp_path):
                    "no triangles")
 
 
-
 def test_a_collada_file_that_cannot_be_read_is_unreadable_not_refused(tmp_path):
     """world_sdf makes MeshUnreadable a warning (the link loads without it, as in Gazebo);
     STL and OBJ faults and refusals of the file itself stay plain MeshErrors."""

@@ -14,8 +14,6 @@ from mesh_cache_helpers import assert_same, dae, entries, mesh_world
 HERE = unit_paths.UNIT
 
 
-
-
 def test_parallel_conversion_gives_the_serial_meshes(models, reads, monkeypatch, tmp_path):
     paths = [dae(models, n) for n in range(6)]
     serial = [load_mesh(p) for p in paths]
@@ -72,7 +70,7 @@ def _serial_and_parallel(monkeypatch, tmp_path, world, models):
 
 
 def test_a_file_that_fails_in_the_pool_warns_as_it_does_serially(models, monkeypatch,
-                                                                  tmp_path, reads):
+                                                                 tmp_path, reads):
     world = _world(tmp_path, models, b"this is no XML, so no Collada")
     (serial, parallel), spawned = _serial_and_parallel(monkeypatch, tmp_path, world, models)
     assert len(serial) == 1 and "bad.dae" in serial[0] and "left out" in serial[0]

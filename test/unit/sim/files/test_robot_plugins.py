@@ -10,9 +10,10 @@ import pytest
 
 from tutorial_turtlebot.errors import UrdfError
 from tutorial_turtlebot.sim.devices.lidar import LASER_MODELS, LaserConfig
-from tutorial_turtlebot.sim.files.robot_plugins import (
+from tutorial_turtlebot.sim.files.robot_plugin_types import (
     CAMERA, GPU_LASER, LASER, OPENNI_KINECT, CameraSensor, CameraSpec, DiffDrivePlugin,
-    ImuPlugin, LaserSensor, RobotPlugins, plugin_file)
+    ImuPlugin, LaserSensor, RobotPlugins)
+from tutorial_turtlebot.sim.files.robot_plugins import plugin_file
 from tutorial_turtlebot.sim.files.urdf_file import RobotDescription, read_urdf, read_urdf_text
 import unit_paths
 
@@ -133,7 +134,7 @@ def test_a_24_sample_scan(tmp_path):
 def test_a_shorter_slower_noisier_scan(tmp_path):
     text = burger_text()
     for old, new in [("<max>3.5</max>", "<max>2.0</max>"), ("<stddev>0.01</stddev>",
-                                                           "<stddev>0.05</stddev>"),
+                                                            "<stddev>0.05</stddev>"),
                      ("<update_rate>5</update_rate>", "<update_rate>10</update_rate>"),
                      ("<max_angle>6.28319</max_angle>", "<max_angle>3.14159</max_angle>"),
                      ("<min_angle>0.0</min_angle>", "<min_angle>-3.14159</min_angle>")]:
@@ -376,7 +377,7 @@ BAD_CAMERA = {
                           'reference="camera"', ["<gazebo reference='camera'>", "not a link"]),
     "camera_rate_negative": ("<update_rate>30</update_rate>", "<update_rate>-30</update_rate>",
                              "<update_rate>-30", ["sensor 'front_camera' <update_rate>",
-                                              "update_rate -30 is outside"]),
+                                                  "update_rate -30 is outside"]),
 }
 
 # Under abuse: every number of the plugin blocks is held to limits, refused at parse
@@ -582,7 +583,7 @@ def test_what_is_not_simulated_is_one_warning(tmp_path, case):
 def test_a_second_camera_is_warned(tmp_path):
     snippet = CAMERA_SNIPPET.replace("camera_", "front_")  # the Waffle Pi has camera_link
     text = (URDF / "turtlebot3_waffle_pi.urdf").read_text().replace("</robot>",
-                                                                     snippet + "</robot>")
+                                                                    snippet + "</robot>")
     plugins = read_urdf(write(tmp_path, text)).plugins
     assert plugins.camera == FACTS["turtlebot3_waffle_pi.urdf"].camera
     assert plugins.warnings == (
@@ -638,7 +639,7 @@ def test_read_urdf_text_names_its_source_in_errors():
     with pytest.raises(UrdfError) as err:
         read_urdf_text(text, "spawn_urdf_model tb3_3")
     assert str(err.value).startswith("spawn_urdf_model tb3_3:%d: sensor 'lds_lfcd_sensor' "
-                                      "<samples>: " % line_of(text, "<samples>"))
+                                     "<samples>: " % line_of(text, "<samples>"))
 
 
 @pytest.mark.parametrize("text, words", [

@@ -5,9 +5,9 @@ import time
 
 import pytest
 
+from tutorial_turtlebot.errors import RequestError
 from tutorial_turtlebot.sim.files import limits
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf_text
-from tutorial_turtlebot.sim.world.world_control import RequestError
 
 from unit_helpers import at, run
 

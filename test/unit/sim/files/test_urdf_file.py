@@ -316,8 +316,8 @@ BAD = {
                        [":4:", "joint 'j': type 'hinge'", "continuous"]),
     "revolute_without_limit": (ROBOT % JOINT_AB.replace("fixed", "revolute"),
                                [":4:", "joint 'j': missing <limit>"]),
-    "origin_not_numbers": (ROBOT % JOINT_AB.replace(
-        "</joint>", '\n<origin xyz="0 a 0"/></joint>'), [":5:", "joint 'j' <origin>", "xyz='0 a 0'"]),
+    "origin_not_numbers": (ROBOT % JOINT_AB.replace("</joint>", '\n<origin xyz="0 a 0"/></joint>'),
+                           [":5:", "joint 'j' <origin>", "xyz='0 a 0'"]),
     "origin_two_numbers": (ROBOT % JOINT_AB.replace(
         "</joint>", '<origin rpy="0 0"/></joint>'), [":4:", "<origin>", "rpy='0 0'", "3 numbers"]),
     "axis_nan": (ROBOT % JOINT_AB.replace("</joint>", '<axis xyz="0 0 nan"/></joint>'),
@@ -345,7 +345,8 @@ BAD = {
                        '</collision>\n  </link>\n</robot>\n',
                        [":3:", "link 'a' <geometry>", "exactly one"]),
     "box_negative": ('<robot name="r">\n  <link name="a">\n    <collision><geometry>\n'
-                     '      <box size="0.1 -0.1 0.1"/></geometry></collision>\n  </link>\n</robot>\n',
+                     '      <box size="0.1 -0.1 0.1"/></geometry></collision>\n'
+                     '  </link>\n</robot>\n',
                      [":4:", "link 'a' <box>", "positive"]),
     "cylinder_without_radius": ('<robot name="r">\n  <link name="a"><visual><geometry>\n'
                                 '    <cylinder length="1"/></geometry></visual></link>\n</robot>\n',
@@ -376,6 +377,6 @@ def test_malformed_file_names_file_line_and_fault(tmp_path, case):
 
 def test_missing_file_names_it(tmp_path):
     path = tmp_path / "nowhere" / "turtlebot3_tank.urdf"
-    with pytest.raises(UrdfError, match="turtlebot3_tank.urdf: cannot read URDF file: No such file"):
+    with pytest.raises(UrdfError,
+                       match="turtlebot3_tank.urdf: cannot read URDF file: No such file"):
         read_urdf(path)
-

@@ -11,13 +11,12 @@ import numpy as np
 import pybullet
 import pytest
 
-from tutorial_turtlebot.errors import UserError
+from tutorial_turtlebot.errors import RequestError, UserError
 from tutorial_turtlebot.sim.files import urdf_meshes
 from tutorial_turtlebot.sim.files.mesh_file import load_mesh
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, read_urdf_text, urdf_path
 from tutorial_turtlebot.sim.world.world_control import WorldControl
-from tutorial_turtlebot.sim.world.world_models import RequestError
 
 from unit_helpers import run, write
 import unit_paths
@@ -108,7 +107,7 @@ def test_package_file_and_relative_mesh_filenames_are_found_on_reading(tmp_path)
     text = one_link(uri, scale="1 1 1")
     from_text = read_urdf_text(text, "model_xml of x").links["body"].visuals[0].geometry
     assert (from_text.filename, from_text.uri, from_text.size) == (str(tmp_path / "crate.stl"),
-                                                                  uri, (1.0, 1.0, 1.0))
+                                                                   uri, (1.0, 1.0, 1.0))
 
 
 def test_a_relative_mesh_of_a_urdf_given_as_text_is_taken_from_the_working_directory(

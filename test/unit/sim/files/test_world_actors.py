@@ -126,12 +126,12 @@ def test_an_actors_links_keep_their_visuals_and_lose_their_collisions():
     reaches the physics, so lasers and contacts pass through it."""
     world = load_world(ACTORS)
     assert [s.name for s in world.model_shapes("pacer")] == ["pacer::pacer_pose::pacer_visual",
-                                                           "pacer::badge::visual"]
+                                                             "pacer::badge::visual"]
     assert not any(s.collision for s in world.model_shapes("pacer") + world.model_shapes("walker"))
     badge = world.shape("pacer::badge::visual")
     assert badge.twin is None and badge.pose[:3] == pytest.approx((-1.0, 1.0, 1.9))
     assert [link.scoped for link in world.model("pacer").links] == ["pacer::pacer_pose",
-                                                                   "pacer::badge"]
+                                                                    "pacer::badge"]
 
 
 def test_an_actors_plugin_is_one_warning_and_the_actor_still_loads():
@@ -180,7 +180,7 @@ def test_an_included_actor_file_is_an_actor(tmp_path, monkeypatch):
     (script(trajectory([("-1", "0 0 0 0 0 0")])), "<time> -1 is outside"),
     (script(trajectory([(1, "0 nan 0 0 0 0")])), "<pose>"),
     (script(trajectory([(1, "0 0 0 0 0 0")], ident="x")), "<trajectory id='x'>: must be an "
-                                                           "integer"),
+     "integer"),
     (script(extra="<delay_start>inf</delay_start>"), "<delay_start> inf"),
     ("<skin><filename>x.dae</filename><scale>-1</scale></skin>", "<scale>"),
 ])

@@ -2,18 +2,16 @@
 spawn_check), in pybullet with no ROS master. The fixture world test/fixtures/worlds/
 turtlebot3_world_meshes.world is turtlebot3_gazebo's turtlebot3_world as Gazebo users have it:
 its walls and hexagons are Collada meshes in inches, found through GAZEBO_MODEL_PATH."""
-import math
 import os
 
 import numpy as np
 import pybullet
 import pytest
 
-from tutorial_turtlebot.errors import WorldError
+from tutorial_turtlebot.errors import RequestError, WorldError
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world.spawn_check import find_obstacle
 from tutorial_turtlebot.sim.engine.world_bullet import WORLD_COLLISION_GROUP, build_world
-from tutorial_turtlebot.sim.world.world_control import RequestError
 
 from unit_helpers import ROBOT
 from tutorial_turtlebot.sim.files.world_sdf import load_world

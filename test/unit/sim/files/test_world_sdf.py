@@ -246,7 +246,6 @@ def test_a_bare_model_file_loads(tmp_path):
 # --- bad input ----------------------------------------------------------------------------------
 
 
-
 def test_malformed_xml_names_file_and_line(tmp_path):
     path = tmp_path / "broken.world"
     path.write_text('<sdf version="1.6">\n<world name="w">\n<model name="m">\n</world>\n</sdf>\n')
@@ -281,7 +280,8 @@ def test_bad_pose_and_flag(tmp_path):
 
 def test_self_crossing_polyline_is_refused(tmp_path):
     points = "".join("<point>%s</point>" % p for p in ("0 0", "1 1", "1 0", "0 1"))
-    message = world_fault(write(tmp_path, model("<polyline>%s<height>1</height></polyline>" % points)))
+    polyline = "<polyline>%s<height>1</height></polyline>" % points
+    message = world_fault(write(tmp_path, model(polyline)))
     assert "<polyline>" in message and "simple polygon" in message
 
 

@@ -7,6 +7,7 @@ import pytest
 
 from tutorial_turtlebot.sim.files.mesh_file import cache_clear
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
+from tutorial_turtlebot.sim.world.world_control import WorldControl
 from tutorial_turtlebot.sim.files.world_sdf import load_model_xml, load_world
 from tutorial_turtlebot.sim.files.world_types import Inertial
 
@@ -29,8 +30,6 @@ def world_file(tmp_path, body, name="test.world"):
     path.write_text('<?xml version="1.0"?>\n<sdf version="1.6">\n<world name="w">\n%s\n'
                     '</world>\n</sdf>\n' % body)
     return str(path)
-
-
 
 
 def link(inertial="", geometry=BOX, extra=""):
@@ -83,15 +82,70 @@ def test_a_nan_pose_is_still_refused_in_a_static_model(tmp_path, where):
     ("<mass>-1</mass>", "<mass> -1 must be positive"),
     ("<mass>nan</mass>", "<mass> nan must be positive"),
     (BUILDING_EDITOR, "<mass> 0 must be positive"),
-    ("<mass>1</mass><inertia><ixx>0</ixx><iyy>1</iyy><izz>1</izz></inertia>", "ixx 0 must be"),
-    ("<mass>1</mass><inertia><ixx>1</ixx><iyy>nan</iyy><izz>1</izz></inertia>", "iyy nan must"),
 ])
-def test_a_movable_links_bad_mass_or_inertia_is_refused_as_gazebo_refuses_it(tmp_path, inertial,
-                                                                               words):
-    """Gazebo's ODELink::UpdateMass throws for a mass that is not > 0; ODE asserts a positive
-    definite inertia. Nothing is repaired there, so nothing is here."""
+def test_a_movable_links_bad_mass_is_refused_as_gazebo_refuses_it(tmp_path, inertial, words):
+    """Gazebo's ODELink::UpdateMass throws for a mass that is not > 0."""
     message = world_fault(world_file(tmp_path, model(link(inertial), static="false")))
     assert words in message and "Gazebo refuses it on a link that is not static" in message
+
+
+def test_a_movable_links_nan_inertia_is_refused_by_our_bound(tmp_path):
+    inertial = "<mass>1</mass><inertia><ixx>1</ixx><iyy>nan</iyy><izz>1</izz></inertia>"
+    message = world_fault(world_file(tmp_path, model(link(inertial), static="false")))
+    assert "<inertia> iyy nan is outside [-1e+06, 1e+06] kg m^2" in message
+
+
+ZERO_INERTIA = ("<mass>0.2</mass><inertia><ixx>0</ixx><ixy>0</ixy><ixz>0</ixz><iyy>0</iyy>"
+                "<iyz>0</iyz><izz>0</izz></inertia>")
+
+
+@pytest.mark.parametrize("inertia", [
+    "<ixx>0</ixx><iyy>0</iyy><izz>0</izz>",
+    "<ixx>-1</ixx><iyy>1</iyy><izz>1</izz>",
+    "<ixx>1</ixx><iyy>1</iyy><izz>1</izz><ixy>2</ixy>",     # positive moments, not definite
+])
+def test_a_movable_links_inertia_that_is_not_positive_definite_is_odes_fallback(tmp_path,
+                                                                                inertia):
+    """ODE's dBodySetMass (Gazebo 11's copy) gives such a body an identity inverse inertia
+    with a message and goes on: each moment 1 kg m^2 here too, one warning per file."""
+    inertial = "<mass>0.2</mass><inertia>%s</inertia>" % inertia
+    body = (model(link(inertial), static="false", name="can")
+            + model(link(inertial), static="false", name="can_2", pose="2 0 0.5 0 0 0"))
+    world = load_world(world_file(tmp_path, body))
+    assert world.models == ("can", "can_2")
+    for name in world.models:
+        assert world.model(name).links[0].inertial.inertia == (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
+        assert world.model(name).links[0].inertial.mass == 0.2
+    [message] = world.warnings
+    assert "inertia is not positive definite" in message and "1 kg m^2" in message
+    assert message.startswith(str(tmp_path / "test.world") + ":4: ") and "\n" not in message
+
+
+def test_a_positive_definite_inertia_is_kept(tmp_path):
+    inertial = ("<mass>0.2</mass><inertia><ixx>0.1</ixx><iyy>0.2</iyy><izz>0.3</izz>"
+                "<ixy>0.01</ixy></inertia>")
+    world = load_world(world_file(tmp_path, model(link(inertial), static="false")))
+    assert world.model("m").links[0].inertial.inertia == (0.1, 0.2, 0.3, 0.01, 0.0, 0.0)
+    assert world.warnings == ()
+
+
+def test_a_body_of_zero_inertia_stands_and_turns_in_the_physics(tmp_path):
+    """Built in pybullet with the fallback inertia: it falls onto the floor and stays."""
+    body = ('<include><uri>model://ground_plane</uri></include>'
+            + model(link(ZERO_INERTIA), static="false", name="can", pose="1 1 0.6 0 0 0.3"))
+    sim = Simulation(SimConfig(world=world_file(tmp_path, body), spawn_robot=False))
+    try:
+        wc = WorldControl(sim)
+        for _ in range(800):
+            sim.step()
+        (x, _, z), _ = wc.get_model_state("can")[0]
+        assert abs(z - 0.5) < 0.01 and abs(x - 1) < 0.01
+        pose = wc.get_model_state("can")[0]
+        wc.set_model_state("can", ((1, 1, 1.5), pose[1]), ((0, 0, 0), (0, 0, 2.0)))
+        sim.step()
+        assert abs(wc.get_model_state("can")[1][1][2] - 2.0) < 0.05   # it turns, at 2 rad/s
+    finally:
+        sim.close()
 
 
 def test_a_movable_links_huge_mass_is_refused_by_our_bound_not_gazebos(tmp_path):
@@ -147,6 +201,48 @@ def test_a_collada_file_that_cannot_be_read_is_one_warning(tmp_path, content):
     [message] = world.warnings
     assert "m::l::c left out: %s: " % (tmp_path / "broken.dae") in message
     assert "\n" not in message
+
+
+def test_a_mesh_scaled_by_zero_is_left_out_with_one_warning(tmp_path):
+    """A factor 0 leaves a mesh with no extent: Gazebo draws and hits nothing there."""
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "plate.stl").write_text(
+        "solid p\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+        "vertex 0 1 0\nendloop\nendfacet\nendsolid p\n")
+    geometry = "<mesh><uri>meshes/plate.stl</uri><scale>1 0 0</scale></mesh>"
+    world = load_world(world_file(tmp_path, model(link(geometry=geometry))))
+    assert world.models == ("m",) and world.model_shapes("m") == ()
+    [message] = world.warnings
+    assert "m::l::c left out: its <scale> 1 0 0 has a factor 0" in message
+    assert len(message) <= 200
+    assert "<scale>" in world_fault(world_file(
+        tmp_path, model(link(geometry=geometry.replace("1 0 0", "1 nan 0")))))
+
+
+def test_a_second_top_level_model_of_a_name_is_left_out_as_gazebo_leaves_it(tmp_path):
+    """Gazebo 11's World::LoadModel inserts the first model of a name ("already exists"): a
+    world that includes one model twice without a <name> has it once, where the first
+    stands; so does one with two <model>s of a name."""
+    (tmp_path / "models" / "goal").mkdir(parents=True)
+    (tmp_path / "models" / "goal" / "model.sdf").write_text(
+        '<sdf version="1.6">%s</sdf>' % model(link(), name="Goal", pose="0 0 0.5 0 0 0"))
+    (tmp_path / "models" / "goal" / "model.config").write_text(
+        '<model><name>goal</name><sdf version="1.6">model.sdf</sdf></model>')
+    body = ('<include><pose>-4.5 0 0 0 0 3.1416</pose><uri>model://goal</uri></include>'
+            '<include><pose>4.5 0 0 0 0 0</pose><uri>model://goal</uri></include>'
+            + model(link(), name="wall", pose="0 2 0.5 0 0 0")
+            + model(link(), name="wall", pose="0 -2 0.5 0 0 0")
+            + '<include><uri>model://goal</uri><name>goal_2</name></include>')
+    world = load_world(world_file(tmp_path, body))
+    assert world.models == ("Goal", "wall", "goal_2")
+    assert [s.name for s in world.shapes] == ["Goal::l::c", "wall::l::c", "goal_2::l::c"]
+    assert world.shape("Goal::l::c").pose[0] == pytest.approx(-4.5)
+    assert world.shape("wall::l::c").pose[1] == pytest.approx(2.0)
+    first, second = world.warnings
+    assert first.startswith(str(tmp_path / "test.world") + ":4: ")
+    assert first.endswith('a second model named Goal is left out, as Gazebo leaves it out '
+                          '("already exists")')
+    assert "a second model named wall is left out" in second
 
 
 def test_a_spawned_models_missing_mesh_is_a_warning_of_its_world(tmp_path):

@@ -19,6 +19,7 @@ from tutorial_turtlebot.sim.world.spawn_check import (FLOOR_CLEARANCE, find_obst
                                                       footprint_radius)
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.engine.client import Client
 from tutorial_turtlebot.sim.engine.world_bullet import WORLD_COLLISION_GROUP, build_world
 from tutorial_turtlebot.sim.files.world_catalogue import WORLDS, resolve_world
 from tutorial_turtlebot.sim.files.world_sdf import load_world
@@ -46,7 +47,7 @@ def autorace():
 
 def _built(world):
     """(body id -> shape name, client id) of ``world`` built in a fresh pybullet client."""
-    cid = pybullet.connect(pybullet.DIRECT)
+    cid = Client.connect()     # an engine Client (int(cid) is its id)
     bodies = build_world(world, cid)
     yield {body: name for name, body in bodies.items()}, cid
     pybullet.disconnect(physicsClientId=cid)
@@ -168,9 +169,9 @@ def test_outer_walls_close_the_house_at_the_scan_plane(house):
     assert extent(("Wall_81", "Wall_82", "Wall_83", "Wall_84"), 0) == pytest.approx(
         (-7.58, 7.58), abs=FOOTPRINT_TOLERANCE)
     assert extent(("Wall_85", "Wall_86"), 2) == pytest.approx((-4.0, 5.35),
-                                                            abs=FOOTPRINT_TOLERANCE)
+                                                              abs=FOOTPRINT_TOLERANCE)
     assert extent(("Wall_95", "Wall_96"), 2) == pytest.approx((-5.35, 5.25),
-                                                            abs=FOOTPRINT_TOLERANCE)
+                                                              abs=FOOTPRINT_TOLERANCE)
     sill, = [p for p in wall_pieces(house, "Wall_83") if p.name.endswith("::sill")]
     assert world_box(sill)[:2] == pytest.approx((-4.97, -0.14), abs=FOOTPRINT_TOLERANCE)
     assert world_box(sill)[4:] == pytest.approx((0.0, 0.5))
@@ -251,8 +252,8 @@ def test_furniture_poses(house):
                          ("first_2015_trash_can_0", (-4.694, 4.894))):
         can = house.shape(HOUSE + name + "::link::collision")
         assert can.kind == "cylinder" and can.pose[:2] == pytest.approx((x, y), abs=0.001)
-        assert can.size[1] == pytest.approx(0.74, abs=0.01) and can.pose[2] == pytest.approx(0.368,
-                                                                                      abs=0.001)
+        assert (can.size[1] == pytest.approx(0.74, abs=0.01)
+                and can.pose[2] == pytest.approx(0.368, abs=0.001))
     post = house.shape(HOUSE + "Mailbox::link::post")
     assert post.pose[:2] == pytest.approx((0.883, -0.576), abs=0.001)
     top = house.shape(HOUSE + "table_marble::link::top")

@@ -119,7 +119,8 @@ def test_a_spawned_sdf_is_parsed_once(control, parses):
 
 @pytest.mark.parametrize("data", ["\n\n<?xml version='1.0'?>\n<a>\n<b/></a>",
                                   "<!--\n a comment\n-->\n<?xml version='1.0'?><a>\n<b/></a>",
-                                  b"  \r\n\n<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<a>\n<b/></a>"])
+                                  b"  \r\n\n<?xml version=\"1.0\" encoding=\"UTF-8\"?>"
+                                  b"\n<a>\n<b/></a>"])
 def test_blank_lines_before_the_declaration_are_read_and_lines_keep_their_numbers(data):
     """Published worlds begin with blank lines before <?xml ...?>: Gazebo's TinyXML reads
     them (expat alone refuses them)."""

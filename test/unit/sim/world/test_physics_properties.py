@@ -2,7 +2,7 @@
 import pytest
 
 from tutorial_turtlebot.sim.world.physics_properties import (OdeConfig, PhysicsProperties,
-                                                       bullet_parameters, updated, validate)
+                                                             bullet_parameters, updated, validate)
 
 
 def test_real_time_factor_is_step_times_rate():
@@ -27,7 +27,8 @@ def test_round_trip_of_every_field():
     PhysicsProperties(time_step=0.0), PhysicsProperties(time_step=0.5),
     PhysicsProperties(time_step=float("nan")), PhysicsProperties(max_update_rate=-1.0),
     PhysicsProperties(gravity=(0.0, 0.0, float("inf"))),
-    PhysicsProperties(ode=OdeConfig(sor_pgs_iters=0)), PhysicsProperties(ode=OdeConfig(erp=float("nan")))])
+    PhysicsProperties(ode=OdeConfig(sor_pgs_iters=0)),
+    PhysicsProperties(ode=OdeConfig(erp=float("nan")))])
 def test_refused(bad):
     with pytest.raises(ValueError):
         validate(bad)

@@ -6,10 +6,11 @@ import math
 import numpy as np
 import pytest
 
+from tutorial_turtlebot.errors import RequestError
 from tutorial_turtlebot.sim.engine.bullet import pybullet
 from tutorial_turtlebot.sim.world.physics_properties import OdeConfig, PhysicsProperties
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.world.world_control import RequestError, WorldControl
+from tutorial_turtlebot.sim.world.world_control import WorldControl
 
 from unit_helpers import CUBE, ROBOT, WHEEL, at, box_sdf, run
 

@@ -6,18 +6,17 @@ import os
 import numpy as np
 import pytest
 
-from tutorial_turtlebot.errors import UserError
+from tutorial_turtlebot.errors import RequestError, UserError
 from tutorial_turtlebot.sim.engine.physics import MAX_ROBOTS
 from tutorial_turtlebot.sim.world.sim_robot import normalize_namespace
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf
 from tutorial_turtlebot.sim.world.world_control import WorldControl
-from tutorial_turtlebot.sim.world.world_models import RequestError
-
-IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 from unit_helpers import at, run, urdf_text
 import unit_paths
+
+IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 
 @pytest.mark.parametrize("given, normal", [("", ""), ("/", ""), ("tb3_0", "/tb3_0/"),
@@ -207,7 +206,8 @@ def test_the_urdf_makes_the_robot(tmp_path):
     path.write_text(edited)
     sim = Simulation(SimConfig(model="burger", world="empty", urdf=str(path)))
     try:
-        assert len(sim.robot.scan()) == 24 and sim.robot.laser.angle_increment == pytest.approx(6.28319 / 23)
+        assert len(sim.robot.scan()) == 24
+        assert sim.robot.laser.angle_increment == pytest.approx(6.28319 / 23)
         assert sim.robot.drive.separation == 0.200
     finally:
         sim.close()
@@ -252,7 +252,7 @@ def test_a_camera_looks_along_its_links_x_axis():
         sim.close()
 
 
-# --- a failed robot spawn leaves nothing ------------------------------------------------------------
+# --- a failed robot spawn leaves nothing ----------------------------------------------------------
 
 def _nothing_at(sim, x, y):
     """No body but the ground between 0.01 and 1 m above (x, y): what another robot's laser

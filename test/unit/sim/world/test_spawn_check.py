@@ -233,6 +233,37 @@ def test_a_floor_higher_than_the_robot_is_an_overlap_with_its_top_as_z_pos():
         sim.close()
 
 
+def terrain_world(tmp_path, height=0.3):
+    """A world of one open mesh, a 20 m square of two triangles at ``height`` m, with no ground
+    plane under it (as an outdoor world's landscape mesh is)."""
+    (tmp_path / "terrain.obj").write_text(
+        "v -10 -10 0\nv 10 -10 0\nv 10 10 0\nv -10 10 0\nf 1 2 3\nf 1 3 4\n")
+    geometry = "<geometry><mesh><uri>terrain.obj</uri></mesh></geometry>"
+    path = tmp_path / "terrain.world"
+    path.write_text('<?xml version="1.0"?><sdf version="1.6"><world name="w"><model '
+                    'name="landscape"><static>true</static><pose>0 0 %g 0 0 0</pose><link '
+                    'name="link"><collision name="c">%s</collision><visual name="v">%s'
+                    '</visual></link></model></world></sdf>' % (height, geometry, geometry))
+    return str(path)
+
+
+def test_a_robot_under_a_terrain_with_no_ground_below_stands_on_the_terrain(tmp_path):
+    """Spawned and teleported at z 0 under a landscape mesh 0.3 m up, higher than the robot
+    and with nothing beneath it: on the landscape, not falling through the world."""
+    sim = Simulation(SimConfig(world=terrain_world(tmp_path), model="waffle", x=1.0, y=2.0))
+    try:
+        assert sim.spawn[2] == pytest.approx(0.3)
+        _, _, z, roll, pitch = stand(sim)
+        assert z == pytest.approx(0.3, abs=0.003) and abs(roll) < LEVEL and abs(pitch) < LEVEL
+        wc = WorldControl(sim)
+        wc.set_model_state("turtlebot3_waffle", at(-3.0, 1.0, 0.0), AT_REST)
+        x, y, z, _, _ = stand(sim)
+        assert (x, y, z) == (pytest.approx(-3.0, abs=0.01), pytest.approx(1.0, abs=0.01),
+                             pytest.approx(0.3, abs=0.003))
+    finally:
+        sim.close()
+
+
 # --- overlap -------------------------------------------------------------------------------------
 
 def test_a_spawn_overlapping_a_wall_is_taken_with_one_warning():
@@ -283,7 +314,7 @@ class RaysDown:
         self.floor = floor
         self.asked = []
 
-    def surfaces_below(self, points, top, bottom, static_only=True):
+    def surfaces_below(self, points, top, bottom, static_only=True, lowest=False):
         self.asked.append((np.asarray(points), top, bottom))
         return np.full(len(points), self.floor if bottom <= self.floor <= top else np.nan)
 
@@ -299,10 +330,16 @@ def test_the_rays_run_from_the_robot_top_to_the_requested_z_over_its_footprint()
     assert (start, end) == (pytest.approx(top), 0.0)
     assert np.hypot(points[:, 0] - 1.0, points[:, 1] - 2.0).max() == pytest.approx(reach)
     assert len(points) > 16
-    # a floor above the robot's top, or no higher than LIFT_TOLERANCE: the pose as given
-    for floor in (0.25, LIFT_TOLERANCE, -0.1):
+    # a floor no higher than LIFT_TOLERANCE: the pose as given
+    for floor in (LIFT_TOLERANCE, -0.1):
         pose = at(1.0, 2.0, 0.0)
         assert landed_pose(RaysDown(floor), burger, pose) is pose
+    # the only surface above the robot's top, nothing below it: under the ground, onto it
+    rays = RaysDown(0.25)
+    assert landed_pose(rays, burger, at(1.0, 2.0, 0.0)) == ((1.0, 2.0, 0.25), at(0, 0)[1])
+    assert [(start, end) for _, start, end in rays.asked] == [
+        (pytest.approx(top), 0.0), (pytest.approx(top), -spawn_check.BURIED_DEPTH),
+        (spawn_check.BURIED_DEPTH, pytest.approx(top))]
     # on its back (pitched 90 degrees) its top is the back of its chassis, 0.102 m from the root
     rays = RaysDown(-1.0)
     landed_pose(rays, burger, ((0.0, 0.0, 0.3), quat_from_rpy(0.0, math.pi / 2, 0.0)))

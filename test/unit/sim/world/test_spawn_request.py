@@ -1,12 +1,13 @@
-"""Spawn requests: SDF and URDF model_xml, name rules, refusals (sim/world/spawn_request). No ROS."""
+"""Spawn requests: SDF and URDF model_xml, name rules, refusals (sim/world/spawn_request).
+No ROS."""
 import math
 
 import pytest
 
-from tutorial_turtlebot.sim.world import reference_frames as rf
+from tutorial_turtlebot.errors import RequestError
 from tutorial_turtlebot.package_data import data_dir
 from tutorial_turtlebot.sim.world.spawn_request import MAX_XML_BYTES, parse_spawn, placed
-from tutorial_turtlebot.sim.world.world_models import RequestError, check_model_name
+from tutorial_turtlebot.sim.world.world_models import check_model_name
 
 from unit_helpers import at
 
@@ -26,7 +27,8 @@ BOX = """<sdf version="1.6">
 
 URDF = """<?xml version="1.0"?>
 <robot name="anything">
-  <link name="base"><collision><geometry><cylinder radius="0.1" length="0.2"/></geometry></collision></link>
+  <link name="base"><collision><geometry><cylinder radius="0.1" length="0.2"/></geometry>\
+</collision></link>
   <link name="top"><visual><geometry><sphere radius="0.05"/></geometry></visual></link>
   <joint name="hinge" type="continuous"><parent link="base"/><child link="top"/></joint>
 </robot>"""
@@ -37,7 +39,7 @@ def test_sdf_model_renamed_and_placed_with_its_inertial_and_friction():
     world = request.world
     assert request.urdf is None and world.models == ("crate",)
     model = world.model("crate")
-    assert not model.static and [l.scoped for l in model.links] == ["crate::link"]
+    assert not model.static and [link.scoped for link in model.links] == ["crate::link"]
     assert model.pose[:3] == pytest.approx((1.0, 2.0, 0.1))    # initial_pose * <pose>
     assert model.pose[5] == pytest.approx(math.pi / 2)
     link = model.links[0]
@@ -121,7 +123,7 @@ def test_placed_in_a_frame_and_refusing_nan():
         placed(((float("nan"), 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)), None)
 
 
-# --- what one spawn may cost the loop (prepare_spawn) -----------------------------------------------
+# --- what one spawn may cost the loop (prepare_spawn) ---------------------------------------------
 
 from tutorial_turtlebot.sim.world import spawn_request  # noqa: E402
 

@@ -5,8 +5,8 @@ import os
 
 import pytest
 
+from tutorial_turtlebot.errors import RequestError
 from tutorial_turtlebot.package_data import data_dir
-from tutorial_turtlebot.sim.world.world_control import RequestError
 from tutorial_turtlebot.sim.files.urdf_file import read_urdf, read_urdf_text
 
 from unit_helpers import CUBE, ROBOT, WHEEL, at, box_sdf, run
@@ -48,7 +48,7 @@ def test_collision_naming_rules():
     </robot>"""
     shape = '<geometry><sphere radius="0.1"/></geometry></collision>'
     urdf = urdf.replace('"bumper"/>', '"bumper">' + shape).replace("<collision/>",
-                                                                    "<collision>" + shape)
+                                                                   "<collision>" + shape)
     # base's own two, then its fixed children in joint-name order (a_fix before b_fix); a name
     # that starts with the holding link's name is not prefixed (base_plate), as sdformat does
     assert read_urdf_text(urdf, "r").collision_names() == {
@@ -238,20 +238,20 @@ def test_lights_get_and_set(empty):
     assert wc.get_light("sun").diffuse == (0.1, 0.2, 0.3, 1.0)
 
 
-# --- deleted models' bodies: parked for reuse, a bounded number of them ----------------------------
+# --- deleted models' bodies: parked for reuse, a bounded number of them ---------------------------
 
 def test_parked_bodies_are_bounded_and_the_newest_reused(empty):
     """Spawning and deleting 100 boxes of distinct sizes leaves at most MAX_PARKED_BODIES bodies
     waiting (each costs every step); the last text deleted is built again from its parked body."""
     from tutorial_turtlebot.sim.engine.bullet import pybullet
-    from tutorial_turtlebot.sim.engine.world_bullet import MAX_PARKED_BODIES, body_pool
+    from tutorial_turtlebot.sim.engine.body_pool import MAX_PARKED_BODIES
     sim, wc = empty
     cid = sim.physics.client
     before = pybullet.getNumBodies(physicsClientId=cid)
     for k in range(100):
         wc.spawn("box%d" % k, box_sdf(size=0.1 + k * 1e-3), at(3.0, 3.0, 0.5))
         wc.delete("box%d" % k)
-    pool = body_pool(sim.physics)
+    pool = sim.physics.body_pool
     assert pool.parked_bodies == MAX_PARKED_BODIES
     assert pybullet.getNumBodies(physicsClientId=cid) == before + MAX_PARKED_BODIES
     wc.spawn("again", box_sdf(size=0.1 + 99e-3), at(3.0, 3.0, 0.5))   # the newest text
@@ -259,6 +259,21 @@ def test_parked_bodies_are_bounded_and_the_newest_reused(empty):
     assert pybullet.getNumBodies(physicsClientId=cid) == before + MAX_PARKED_BODIES
     wc.spawn("first", box_sdf(size=0.1), at(-3.0, 3.0, 0.5))            # removed long ago
     assert pybullet.getNumBodies(physicsClientId=cid) == before + MAX_PARKED_BODIES + 1
+
+
+def test_a_spawned_models_texture_warnings_are_returned_to_be_logged(empty, monkeypatch):
+    """A textured crate spawned into a texture budget of 300 px: its image is halved, and the
+    line that says so comes back from spawn (the world API logs it), not lost."""
+    import unit_paths
+    from tutorial_turtlebot.sim.engine import texture_budget
+    monkeypatch.setenv("GAZEBO_MODEL_PATH", os.path.join(unit_paths.FIXTURES, "gazebo_models"))
+    monkeypatch.setattr(texture_budget, "MAX_TEXTURE_PIXELS", 300)
+    sim, wc = empty
+    xml = ('<sdf version="1.6"><model name="c"><include><uri>model://max_style_crate</uri>'
+           '</include></model></sdf>')
+    [line] = wc.spawn("crate", xml, at(2.0, 2.0, 0.5))
+    assert "texture budget of 300 px" in line and len(line) <= 200
+    assert wc.spawn("box", box_sdf(), at(-2.0, 2.0, 0.5)) == []
 
 
 @pytest.mark.parametrize("bad", [(math.nan, 0, 0, 1), (0, 0, 0, math.inf), (0, -math.inf, 0, 1)])

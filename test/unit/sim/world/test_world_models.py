@@ -4,10 +4,12 @@ import math
 
 import pytest
 
+from tutorial_turtlebot.errors import RequestError, UserError
 from tutorial_turtlebot.sim.world import reference_frames as rf
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.world.world_control import RequestError, WorldControl
-from tutorial_turtlebot.sim.world.world_models import robot_model_name
+from tutorial_turtlebot.sim.world.world_control import WorldControl
+from tutorial_turtlebot.sim.world.world_models import (robot_model_name, spawn_failure,
+                                                       spawn_refusal)
 
 from unit_helpers import at, box_sdf, run
 
@@ -186,3 +188,16 @@ def test_stage_3_obstacle_spins_when_given_a_twist():
         assert math.hypot(centre[0], centre[1]) < 0.01    # about its own centre
     finally:
         sim.close()
+
+
+def test_a_spawn_refusal_prefixes_a_user_error_once():
+    """spawn_refusal: a UserError becomes the spawn's refusal; a RequestError (a UserError
+    too) already is one and goes on unchanged."""
+    with pytest.raises(RequestError) as err:
+        with spawn_refusal():
+            raise UserError("model_xml: no <model>")
+    assert str(err.value) == "SpawnModel: Failure - model_xml: no <model>"
+    with pytest.raises(RequestError) as err:
+        with spawn_refusal():
+            raise spawn_failure("mesh triangles: 12, more than the 11")
+    assert str(err.value) == "SpawnModel: Failure - mesh triangles: 12, more than the 11"
