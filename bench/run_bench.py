@@ -89,6 +89,7 @@ subscribers, camera, render, meshes, meshworld, meshcamera, multi, learning, soa
 default is all of them but soak and hostile.
 """
 import argparse
+import contextlib
 import os
 import signal
 import statistics
@@ -913,6 +914,25 @@ def mesh_world_physics(world, models, sim_seconds=4.0, rounds=4):
     return {key: value / sim_seconds for key, value in cpu.items()}
 
 
+@contextlib.contextmanager
+def temporary_ros_home():
+    """ROS_HOME a new temporary folder (an empty mesh cache) in this process for the block, then
+    as it was, the folder removed; yields its path."""
+    import shutil
+    import tempfile
+    home = tempfile.mkdtemp(prefix="bench_ros_home_")
+    old_home = os.environ.get("ROS_HOME")
+    os.environ["ROS_HOME"] = home
+    try:
+        yield home
+    finally:
+        if old_home is None:
+            os.environ.pop("ROS_HOME", None)
+        else:
+            os.environ["ROS_HOME"] = old_home
+        shutil.rmtree(home, ignore_errors=True)
+
+
 def mesh_world_rows(runs, row):
     """The generated mesh world's start-up (empty cache, then filled) and physics cost, beside
     the built-in turtlebot3_world, measured in turns."""
@@ -935,17 +955,8 @@ def mesh_world_rows(runs, row):
     row("  the same, second start (the mesh cache filled)", "%.2f" % median(second), "s")
     row("  second start / built-in world's start", "%.2f" % median(
         [s / b for s, b in zip(second, builtin)]), "", TARGETS["meshworld_second"])
-    home = tempfile.mkdtemp(prefix="bench_ros_home_")
-    old_home = os.environ.get("ROS_HOME")
-    os.environ["ROS_HOME"] = home
-    try:
+    with temporary_ros_home():
         costs = [mesh_world_physics(world, models) for _ in range(runs)]
-    finally:
-        if old_home is None:
-            os.environ.pop("ROS_HOME", None)
-        else:
-            os.environ["ROS_HOME"] = old_home
-        shutil.rmtree(home, ignore_errors=True)
     for sensors, label in ((False, "physics alone"), (True, "physics and every sensor")):
         builtin_cost = median([c[("turtlebot3_world", sensors)] for c in costs])
         mesh_cost = median([c[(world, sensors)] for c in costs])
@@ -989,13 +1000,8 @@ def camera_costs(world, models, rounds=8, images=4):
 def mesh_camera_rows(runs, row):
     """The Waffle Pi's camera in the generated world beside turtlebot3_world: CPU per image
     without ROS (in turns), and the sim node at real time with the camera subscribed."""
-    import shutil
-    import tempfile
     world, models = generated_mesh_world()
-    home = tempfile.mkdtemp(prefix="bench_ros_home_")
-    old_home = os.environ.get("ROS_HOME")
-    os.environ["ROS_HOME"] = home
-    try:
+    with temporary_ros_home() as home:
         costs = [camera_costs(world, models) for _ in range(runs)]
         world_env = {"GAZEBO_MODEL_PATH": models, "ROS_HOME": home}
         running, floor = [], []
@@ -1004,12 +1010,6 @@ def mesh_camera_rows(runs, row):
                                            world=world, world_env=world_env))
             floor.append(measure_running(1.0, ["/odom"], model="waffle_pi", world=world,
                                          world_env=world_env))
-    finally:
-        if old_home is None:
-            os.environ.pop("ROS_HOME", None)
-        else:
-            os.environ["ROS_HOME"] = old_home
-        shutil.rmtree(home, ignore_errors=True)
     row("Waffle Pi camera, CPU per image, no ROS: turtlebot3_world / generated world",
         "%.1f / %.1f" % (median([c["builtin"] for c in costs]),
                          median([c["generated"] for c in costs])), "ms")

@@ -1,7 +1,8 @@
 """Textured meshes for the tests, made from scratch: a 1 m cube whose every face shows a whole
 texture of four strong colours in its quadrants, as Collada and as OBJ, and its PNG image
 (written with zlib and struct). Used by test_textures.py and by
-test/fixtures/make_texture_fixtures.py (the rostest's committed world)."""
+test/fixtures/make_texture_fixtures.py (the rostest's committed world). Also the camera tests'
+Waffle Pi (``camera_sim``) and where its image shows a world point (``pixel``)."""
 import os
 import sys
 
@@ -14,6 +15,32 @@ import mesh_world  # noqa: E402
 RED, GREEN, BLUE, YELLOW = (255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 0)
 # the texture's quadrants, as the image shows them: row 0 at the top
 QUADRANTS = {"top left": RED, "top right": GREEN, "bottom left": BLUE, "bottom right": YELLOW}
+
+
+def camera_sim(monkeypatch, world, renderer):
+    """A Waffle Pi at the origin of ``world`` facing +x, its camera drawn by ``renderer``
+    ("tiny": TinyRenderer; "egl": skipped where EGL does not render here)."""
+    import pytest
+    from tutorial_turtlebot.sim.engine import physics, rendering
+    from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
+    if renderer == "egl" and not rendering.egl_available():
+        pytest.skip("EGL does not render on this machine")
+    if renderer == "tiny":
+        monkeypatch.setattr(physics, "enable_egl", lambda client: False)
+    sim = Simulation(SimConfig(model="waffle_pi", world=world, x=0.0, y=0.0, yaw=0.0))
+    assert sim.physics.egl == (renderer == "egl")
+    return sim
+
+
+def pixel(sim, point):
+    """(column, row) of the pixel of ``sim``'s robot camera image that shows world ``point``
+    (m)."""
+    from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
+    position, rotation = sim.robot.camera_pose()
+    spec = sim.robot.camera_spec
+    f = CameraIntrinsics.from_spec(spec).f
+    x, y, z = np.asarray(rotation).T @ (np.asarray(point, dtype=float) - position)
+    return int(f * x / z + spec.width / 2), int(f * y / z + spec.height / 2)
 
 
 def png_bytes(rgb: np.ndarray) -> bytes:

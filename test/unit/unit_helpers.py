@@ -130,6 +130,15 @@ def within(seconds, call, *args):
     return out["result"]
 
 
+def world_file(folder, body, name="test.world", version="1.6"):
+    """Write the SDF world file ``name`` in ``folder`` (a pathlib.Path) holding ``body`` inside
+    <world name="w">, ``body`` starting on line 4; its path."""
+    path = folder / name
+    path.write_text('<?xml version="1.0"?>\n<sdf version="%s">\n<world name="w">\n%s\n'
+                    '</world>\n</sdf>\n' % (version, body))
+    return str(path)
+
+
 def world_fault(path):
     """The one-line WorldError that loading the world file ``path`` raises (it names the
     file)."""

@@ -104,11 +104,7 @@ class ConnectionCaps:
     def topic_done(self, topic: str) -> None:
         """The subscriber is now in the topic's connections (or was refused by rospy)."""
         with self._lock:
-            left = self._topic_pending.get(topic, 0) - 1
-            if left > 0:
-                self._topic_pending[topic] = left
-            else:
-                self._topic_pending.pop(topic, None)
+            release(self._topic_pending, topic)
 
     def admit_service(self, service: str) -> Optional[str]:
         """None and a reservation (end it with service_done), or why the caller is refused."""
@@ -124,11 +120,17 @@ class ConnectionCaps:
     def service_done(self, service: str) -> None:
         """A service connection ended (or never started its thread)."""
         with self._lock:
-            left = self.services.get(service, 0) - 1
-            if left > 0:
-                self.services[service] = left
-            else:
-                self.services.pop(service, None)
+            release(self.services, service)
+
+
+def release(counts: Dict[str, int], key: str) -> None:
+    """One of ``counts[key]`` ended: counted down, the key dropped at 0 (callers hold the
+    lock that guards ``counts``)."""
+    left = counts.get(key, 0) - 1
+    if left > 0:
+        counts[key] = left
+    else:
+        counts.pop(key, None)
 
 
 def refuse(sock, reason: str) -> None:

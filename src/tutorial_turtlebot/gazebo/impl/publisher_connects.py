@@ -25,7 +25,7 @@ import threading
 import xmlrpc.client
 from typing import Callable, Dict, Optional, Set
 
-from .connection_caps import ThrottledLines
+from .connection_caps import ThrottledLines, release
 
 MAX_PUBLISHERS_PER_TOPIC = 32   # publishers of one topic connected or being connected
 REQUEST_TIMEOUT = 10.0          # wall s for one requestTopic, and for one TCPROS connect
@@ -79,11 +79,7 @@ class PublisherBudget:
     def done(self, topic: str) -> None:
         """A connect reserved by start ended."""
         with self._lock:
-            left = self.connecting.get(topic, 0) - 1
-            if left > 0:
-                self.connecting[topic] = left
-            else:
-                self.connecting.pop(topic, None)
+            release(self.connecting, topic)
 
     def forget(self, subscribed: Set[str]) -> None:
         """Drop what is kept about topics no longer subscribed."""

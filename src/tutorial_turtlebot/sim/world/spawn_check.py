@@ -11,14 +11,15 @@ its top (m above its root link, base_footprint on a TurtleBot3) and its reach (m
 vertical axis, in plan). Rays are cast straight down (pybullet's, on the world's collision
 geometry as it is: boxes, cylinders, polylines, meshes open or closed) at the root's (x, y) and
 at points on two circles about it (the reach, and half of it), from the robot's top at the
-requested pose down to the requested z. The highest static surface they meet is the floor under
-the robot: if it lies more than LIFT_TOLERANCE above the requested z, the root link is put on
-it (same x, y and orientation); otherwise the pose is kept as given (a robot above the floor
-falls, as in Gazebo). So a surface counts only if it is below the robot's own top at the
-requested pose: a table top, a shelf, anything above the robot's head is never climbed onto (the
-robot stands under it), and a floor higher than the robot itself (a 0.3 m stage on the ground,
-under a robot asked for z 0) is not found either: the robot overlaps it, and the warning
-proposes its top as z_pos. Movable models and other robots are no floor (the rays pass them by).
+requested pose down (on to BURIED_DEPTH below the requested z). The highest static surface they
+meet is the floor under the robot: if it lies more than LIFT_TOLERANCE above the requested z,
+the root link is put on it (same x, y and orientation); otherwise the pose is kept as given (a
+robot above the floor falls, as in Gazebo). So a surface counts only if it is below the robot's
+own top at the requested pose: a table top, a shelf, anything above the robot's head is never
+climbed onto (the robot stands under it), and a floor higher than the robot itself (a 0.3 m
+stage on the ground, under a robot asked for z 0) is not found either: the robot overlaps it,
+and the warning proposes its top as z_pos. Movable models and other robots are no floor (the
+rays pass them by).
 
 **Under the ground.** When the rays meet nothing at all from the robot's top down to
 BURIED_DEPTH below the requested z, the robot has no floor below it: it stands under a world's
@@ -118,15 +119,17 @@ def landed_pose(physics, description, pose: Pose) -> Pose:
     if not top > LIFT_TOLERANCE:
         return pose
     points = footprint_points(x, y, reach)
-    floors = physics.surfaces_below(points, z + top, z)
-    floor = float(np.nanmax(floors)) if not np.all(np.isnan(floors)) else -math.inf
-    if floor > z + LIFT_TOLERANCE:
-        return (x, y, floor), orientation
-    if floor == -math.inf and np.all(np.isnan(
-            physics.surfaces_below(points, z + top, z - BURIED_DEPTH))):
+    # one cast on down to BURIED_DEPTH below z: only a floor above z lifts the robot, and a
+    # cast that meets nothing at all says the robot is under the ground
+    floors = physics.surfaces_below(points, z + top, z - BURIED_DEPTH)
+    if np.all(np.isnan(floors)):
         grounds = physics.surfaces_below(points, z + BURIED_DEPTH, z + top, lowest=True)
         if not np.all(np.isnan(grounds)):          # under the ground: onto it
             return (x, y, float(np.nanmax(grounds))), orientation
+        return pose
+    floor = float(np.nanmax(floors))
+    if floor > z + LIFT_TOLERANCE:
+        return (x, y, floor), orientation
     return pose
 
 

@@ -111,8 +111,7 @@ class PropertyRequests:
         if mass <= 0:
             raise RequestError("SetLinkProperties: mass %g kg must be > 0" % mass)
         ixx, ixy, ixz, iyy, iyz, izz = inertia
-        tensor = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)
-        if np.linalg.eigvalsh(tensor).min() <= 0:
+        if not limits.positive_definite((ixx, iyy, izz), (ixy, ixz, iyz)):
             raise RequestError("SetLinkProperties: the inertia tensor (ixx %g iyy %g izz %g "
                                "ixy %g ixz %g iyz %g) must be positive definite"
                                % (ixx, iyy, izz, ixy, ixz, iyz))
@@ -125,6 +124,7 @@ class PropertyRequests:
         if max(abs(a - b) for a, b in zip(com, present)) > COM_TOLERANCE:
             raise RequestError("SetLinkProperties: the centre of mass cannot be moved here: keep "
                                "com.position at %.6g %.6g %.6g" % present)
+        tensor = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)
         local = rotation.T @ tensor @ rotation     # in pybullet's inertia axes of the link
         off = max(abs(local[0, 1]), abs(local[0, 2]), abs(local[1, 2]))
         if off > 1e-6 * max(abs(np.diag(local))):

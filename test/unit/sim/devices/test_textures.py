@@ -13,17 +13,14 @@ import pytest
 from tutorial_turtlebot.sim.engine import rendering
 from tutorial_turtlebot.sim.engine.client import Client
 from tutorial_turtlebot.sim.files import obj_writer, texture_images
-from tutorial_turtlebot.sim.engine import physics as physics_module
-from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
 from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
 from tutorial_turtlebot.sim.files.mesh_file import cache_clear, load_mesh
 from tutorial_turtlebot.sim.files.obj_writer import write_obj_parts
-from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files import urdf_meshes
 from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
 
-from texture_fixtures import (QUADRANTS, cube, png_bytes, quadrant_texture, write_textured_dae,
-                              write_textured_obj)
+from texture_fixtures import (QUADRANTS, camera_sim, cube, pixel, png_bytes, quadrant_texture,
+                              write_textured_dae, write_textured_obj)
 
 CUBE_X = 1.5          # m: the cube's face towards the robot (at the origin, facing +x)
 CUBE_SIDE = 0.6       # m
@@ -80,26 +77,6 @@ def renderer(request):
     return request.param
 
 
-def simulation(monkeypatch, world, renderer):
-    """A Waffle Pi at the origin of ``world``, facing +x, its camera drawn by ``renderer``."""
-    if renderer == "egl" and not rendering.egl_available():
-        pytest.skip("EGL does not render on this machine")
-    if renderer == "tiny":
-        monkeypatch.setattr(physics_module, "enable_egl", lambda cid: False)
-    sim = Simulation(SimConfig(model="waffle_pi", world=world, x=0.0, y=0.0, yaw=0.0))
-    assert sim.physics.egl == (renderer == "egl")
-    return sim
-
-
-def pixel(sim, point):
-    """(column, row) of the image pixel that shows world ``point``."""
-    position, rotation = sim.robot.camera_pose()
-    spec = sim.robot.camera_spec
-    f = CameraIntrinsics.from_spec(spec).f
-    x, y, z = np.asarray(rotation).T @ (np.asarray(point, dtype=float) - position)
-    return int(f * x / z + spec.width / 2), int(f * y / z + spec.height / 2)
-
-
 def face_colour(sim, rgb, y, z, name=""):
     """The median colour of a 5 x 5 patch where the image shows the point (CUBE_X, y, z) of a
     cube's face towards the robot."""
@@ -137,7 +114,7 @@ def assert_textured(sim, rgb, centre_y=0.0, mirrored=False):
 def test_a_textured_mesh_shows_its_texture(tmp_path, monkeypatch, renderer, kind):
     mesh = write_textured_dae(tmp_path) if kind == "dae" else write_textured_obj(tmp_path)
     world = write_world(tmp_path, mesh_model("box", mesh.name))
-    sim = simulation(monkeypatch, world, renderer)
+    sim = camera_sim(monkeypatch, world, renderer)
     try:
         assert sim.world.warnings == ()
         rgb, _ = sim.robot.camera_image()
@@ -152,7 +129,7 @@ def test_a_movable_textured_mesh_and_a_mirrored_one(tmp_path, monkeypatch, rende
     write_textured_obj(tmp_path)
     world = write_world(tmp_path, mesh_model("movable", "box.obj", y=0.4, static=False),
                         mesh_model("mirrored", "box.obj", y=-0.4, scale="0.6 -0.6 0.6"))
-    sim = simulation(monkeypatch, world, renderer)
+    sim = camera_sim(monkeypatch, world, renderer)
     try:
         rgb, _ = sim.robot.camera_image()
         assert_textured(sim, rgb, centre_y=0.4)
@@ -174,7 +151,7 @@ def test_material_colours_and_gazebo_scripts(tmp_path, monkeypatch, renderer):
                    material="<material><script><name>Gazebo/Turquoise</name>"
                             "<uri>file://media/materials/scripts/gazebo.material</uri>"
                             "</script></material>"))
-    sim = simulation(monkeypatch, world, renderer)
+    sim = camera_sim(monkeypatch, world, renderer)
     try:
         rgb, _ = sim.robot.camera_image()
         for y, expected in ((0.75, (255, 0, 255)), (-0.75, (0, 0, 255)), (0.0, (0, 255, 255))):
@@ -197,7 +174,7 @@ def test_a_missing_texture_warns_once_and_keeps_the_colour(tmp_path, monkeypatch
         expected = None
     world = write_world(tmp_path, mesh_model("a", "box." + kind, y=0.4),
                         mesh_model("b", "box." + kind, y=-0.4))
-    sim = simulation(monkeypatch, world, "tiny")
+    sim = camera_sim(monkeypatch, world, "tiny")
     try:
         [warning] = sim.world.warnings
         assert "gone.png not drawn (found nowhere" in warning and "\n" not in warning

@@ -7,13 +7,10 @@ import os
 import numpy as np
 import pytest
 
-from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
-from tutorial_turtlebot.sim.engine import physics as physics_module
 from tutorial_turtlebot.sim.engine import rendering, texture_budget
 from tutorial_turtlebot.sim.files.mesh_file import cache_clear
-from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 
-from texture_fixtures import (QUADRANTS, RED, png_bytes, quadrant_texture,
+from texture_fixtures import (QUADRANTS, RED, camera_sim, pixel, png_bytes, quadrant_texture,
                               write_textured_obj)
 import unit_paths
 
@@ -36,24 +33,14 @@ def renderer(request):
 
 
 def simulation(monkeypatch, world, renderer):
-    """A Waffle Pi at the origin of ``world`` facing +x, its camera drawn by ``renderer``."""
-    if renderer == "egl" and not rendering.egl_available():
-        pytest.skip("EGL does not render on this machine")
-    if renderer == "tiny":
-        monkeypatch.setattr(physics_module, "enable_egl", lambda cid: False)
+    """camera_sim with the fixtures' models on GAZEBO_MODEL_PATH."""
     monkeypatch.setenv("GAZEBO_MODEL_PATH", MODELS)
-    sim = Simulation(SimConfig(model="waffle_pi", world=world, x=0.0, y=0.0, yaw=0.0))
-    assert sim.physics.egl == (renderer == "egl")
-    return sim
+    return camera_sim(monkeypatch, world, renderer)
 
 
 def colour_at(sim, rgb, y, z):
     """The median colour of the 5 x 5 pixels where the image shows the point (FACE_X, y, z)."""
-    position, rotation = sim.robot.camera_pose()
-    spec = sim.robot.camera_spec
-    f = CameraIntrinsics.from_spec(spec).f
-    x_c, y_c, z_c = np.asarray(rotation).T @ (np.array([FACE_X, y, z]) - position)
-    col, row = int(f * x_c / z_c + spec.width / 2), int(f * y_c / z_c + spec.height / 2)
+    col, row = pixel(sim, (FACE_X, y, z))
     patch = rgb[row - 2:row + 3, col - 2:col + 3].reshape(-1, 3)
     return tuple(int(v) for v in np.median(patch, axis=0))
 

@@ -12,6 +12,7 @@ from tutorial_turtlebot.sim.files.sdf_elements import (APPROXIMATED, MAX_WARNING
 from tutorial_turtlebot.sim.files.world_catalogue import WORLD_DIR
 from tutorial_turtlebot.sim.files.world_sdf import load_world
 
+from unit_helpers import world_file
 import unit_paths
 
 BOX = '<geometry><box><size>1 1 1</size></box></geometry>'
@@ -22,13 +23,6 @@ def no_model_path(tmp_path, monkeypatch):
     monkeypatch.setenv("GAZEBO_MODEL_PATH", str(tmp_path / "models"))
     monkeypatch.chdir(tmp_path)
     cache_clear()
-
-
-def world_file(tmp_path, body):
-    path = tmp_path / "test.world"
-    path.write_text('<?xml version="1.0"?>\n<sdf version="1.6">\n<world name="w">\n%s\n'
-                    '</world>\n</sdf>\n' % body)
-    return str(path)
 
 
 def model(body, name="m", static="true", link_extra="", geometry=BOX):

@@ -6,13 +6,12 @@ import pytest
 from tutorial_turtlebot.sim.files.world_sdf import load_world
 
 from unit_helpers import world_fault
+from unit_helpers import world_file as sdf_world_file
 
 
 def world_file(tmp_path, body):
-    path = tmp_path / "test.world"
-    path.write_text('<?xml version="1.0"?>\n<sdf version="1.7">\n<world name="w">\n%s\n'
-                    '</world>\n</sdf>\n' % body)
-    return str(path)
+    """An SDFormat 1.7 world (relative_to is 1.7's)."""
+    return sdf_world_file(tmp_path, body, version="1.7")
 
 
 def link(name, pose="", relative=""):

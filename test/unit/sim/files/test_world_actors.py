@@ -9,7 +9,7 @@ from tutorial_turtlebot.sim.files.mesh_file import cache_clear
 from tutorial_turtlebot.sim.files.world_actors import SKIN_BOX, skin_names
 from tutorial_turtlebot.sim.files.world_sdf import load_world
 
-from unit_helpers import world_fault
+from unit_helpers import world_fault, world_file
 import unit_paths
 
 FIXTURES = unit_paths.FIXTURES
@@ -22,13 +22,6 @@ def model_path(tmp_path, monkeypatch):
     monkeypatch.delenv("GAZEBO_RESOURCE_PATH", raising=False)
     monkeypatch.chdir(tmp_path)
     cache_clear()
-
-
-def world_file(tmp_path, body, name="test.world"):
-    path = tmp_path / name
-    path.write_text('<?xml version="1.0"?>\n<sdf version="1.6">\n<world name="w">\n%s\n'
-                    '</world>\n</sdf>\n' % body)
-    return str(path)
 
 
 def actor(body, name="a", pose="1 2 0 0 0 0"):

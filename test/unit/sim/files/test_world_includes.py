@@ -8,7 +8,7 @@ import pytest
 from tutorial_turtlebot.errors import WorldError
 from tutorial_turtlebot.sim.files.world_sdf import MAX_INCLUDE_DEPTH, load_world
 
-from unit_helpers import within
+from unit_helpers import within, world_file
 
 BOX = ('<link name="l"><pose>0 0 0.5 0 0 0</pose><collision name="c"><geometry><box>'
        '<size>1 1 1</size></box></geometry></collision></link>')
@@ -25,13 +25,6 @@ def model_folder(root, name, body, pose="1 2 0 0 0 0", static="false"):
         '<?xml version="1.0"?>\n<sdf version="1.6">\n<model name="%s">\n<pose>%s</pose>\n'
         '<static>%s</static>\n%s\n</model>\n</sdf>\n' % (name, pose, static, body))
     return folder
-
-
-def world_file(tmp_path, body):
-    path = tmp_path / "test.world"
-    path.write_text('<?xml version="1.0"?>\n<sdf version="1.6">\n<world name="w">\n%s\n'
-                    '</world>\n</sdf>\n' % body)
-    return str(path)
 
 
 @pytest.fixture

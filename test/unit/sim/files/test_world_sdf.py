@@ -12,7 +12,7 @@ from tutorial_turtlebot.sim.files.world_catalogue import WORLD_DIR, WORLDS, reso
 from tutorial_turtlebot.sim.files.world_sdf import load_world
 from tutorial_turtlebot.sim.files.world_types import DEFAULT_RGBA
 
-from unit_helpers import world_fault
+from unit_helpers import world_fault, world_file
 
 WORLD_FILES = sorted(glob.glob(os.path.join(WORLD_DIR, "*.world")))
 SYMBOL = "ros_symbol::symbol::"
@@ -22,14 +22,6 @@ GREEN, WHITE = (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 1.0, 1.0)
 @pytest.fixture(scope="module")
 def tb3_world():
     return load_world(resolve_world("turtlebot3_world")[0])
-
-
-def write(tmp_path, body, name="test.world"):
-    """An SDF file holding ``body`` inside <world>; returns its path."""
-    path = tmp_path / name
-    path.write_text('<?xml version="1.0"?>\n<sdf version="1.6">\n<world name="w">\n%s\n</world>\n'
-                    '</sdf>\n' % body)
-    return str(path)
 
 
 def model(geometry, pose="0 0 0 0 0 0", name="m"):
@@ -147,7 +139,7 @@ def test_the_spawn_is_inside_the_arena_and_clear(tb3_world):
 # --- the loader ---------------------------------------------------------------------------------
 
 def test_poses_compose_through_nested_models_links_and_elements(tmp_path):
-    path = write(tmp_path, '''
+    path = world_file(tmp_path, '''
       <model name="outer"><pose>1 2 0 0 0 1.5707963267948966</pose><static>true</static>
         <model name="inner"><pose>1 0 0 0 0 0</pose>
           <link name="l"><pose>0 0 1 0 0 0</pose>
@@ -166,10 +158,11 @@ def test_poses_compose_through_nested_models_links_and_elements(tmp_path):
 
 
 def test_shapes_sizes_and_plane_normal(tmp_path):
-    path = write(tmp_path, model("<sphere><radius>0.4</radius></sphere>", name="ball")
-                 + model("<plane><normal>0 -1 0</normal><size>4 2</size></plane>", name="wall")
-                 + model("<cylinder><radius>0.1</radius><length>2</length></cylinder>",
-                         pose="0 0 0 1.5707963 0 0", name="rod"))
+    path = world_file(tmp_path, model("<sphere><radius>0.4</radius></sphere>", name="ball")
+                      + model("<plane><normal>0 -1 0</normal><size>4 2</size></plane>",
+                              name="wall")
+                      + model("<cylinder><radius>0.1</radius><length>2</length></cylinder>",
+                              pose="0 0 0 1.5707963 0 0", name="rod"))
     world = load_world(path)
     assert world.shape("ball::l::c").size == (0.4,)
     wall = world.shape("wall::l::c")
@@ -180,7 +173,7 @@ def test_shapes_sizes_and_plane_normal(tmp_path):
 
 def test_polyline_is_closed_counter_clockwise_and_deduplicated(tmp_path):
     points = "".join("<point>%s</point>" % p for p in ("0 0", "0 1", "1 1", "1 0.5", "1 0", "0 0"))
-    path = write(tmp_path, model("<polyline>%s<height>0.3</height></polyline>" % points))
+    path = world_file(tmp_path, model("<polyline>%s<height>0.3</height></polyline>" % points))
     world = load_world(path)
     shape = world.shape("m::l::c")
     assert shape.points == ((0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0))
@@ -193,7 +186,7 @@ def test_colours_from_material_script_and_twin(tmp_path):
                 '</geometry></collision><visual name="v"><geometry><box><size>1 1 1</size></box>'
                 '</geometry>%s</visual></link>' % (name, material))
     script = '<material><script><name>Gazebo/%s</name></script>%s</material>'
-    path = write(tmp_path, '<model name="m"><static>1</static>%s%s%s%s</model>' % (
+    path = world_file(tmp_path, '<model name="m"><static>1</static>%s%s%s%s</model>' % (
         link("green", script % ("Green", "")),
         link("diffuse", script % ("Green", "<diffuse>0.2 0.4 0.6 1</diffuse>")),
         link("ambient", "<material><ambient>0.5 0.5 0.5 0.5</ambient></material>"),
@@ -209,7 +202,7 @@ def test_colours_from_material_script_and_twin(tmp_path):
 
 
 def test_visual_only_and_dynamic_models(tmp_path):
-    path = write(tmp_path, '''
+    path = world_file(tmp_path, '''
       <model name="crate"><link name="l">
         <inertial><mass>2</mass></inertial>
         <collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision>
@@ -223,7 +216,7 @@ def test_visual_only_and_dynamic_models(tmp_path):
 
 
 def test_includes_and_non_geometry_elements(tmp_path):
-    path = write(tmp_path, '''
+    path = world_file(tmp_path, '''
       <include><uri>model://sun</uri></include>
       <include><uri>model://ground_plane</uri></include>
       <physics type="ode"><max_step_size>0.001</max_step_size></physics>
@@ -255,7 +248,7 @@ def test_malformed_xml_names_file_and_line(tmp_path):
 
 def test_a_geometry_gazebo_11_does_not_know_names_element_file_and_line(tmp_path):
     # (a missing mesh is a warning: test_world_tolerance.py; a heightmap: test_world_elements.py)
-    message = world_fault(write(tmp_path, model("<capsule><radius>1</radius></capsule>")))
+    message = world_fault(world_file(tmp_path, model("<capsule><radius>1</radius></capsule>")))
     assert ":4:" in message and "<capsule>" in message and "m::l::c" in message
     assert "box, cylinder, sphere, plane, polyline, mesh, heightmap, image" in message
 
@@ -268,20 +261,20 @@ def test_a_geometry_gazebo_11_does_not_know_names_element_file_and_line(tmp_path
     ("<polyline><point>0 0</point><point>1 x</point><height>1</height></polyline>", "<point>"),
 ])
 def test_bad_numbers_name_the_element(tmp_path, geometry, element):
-    message = world_fault(write(tmp_path, model(geometry)))
+    message = world_fault(world_file(tmp_path, model(geometry)))
     assert ":4:" in message and element in message
 
 
 def test_bad_pose_and_flag(tmp_path):
-    assert "<pose>" in world_fault(write(tmp_path, model("<sphere/>", pose="0 0 zero 0 0 0")))
-    message = world_fault(write(tmp_path, '<model name="m"><static>maybe</static></model>'))
+    assert "<pose>" in world_fault(world_file(tmp_path, model("<sphere/>", pose="0 0 zero 0 0 0")))
+    message = world_fault(world_file(tmp_path, '<model name="m"><static>maybe</static></model>'))
     assert "<static>" in message and "maybe" in message
 
 
 def test_self_crossing_polyline_is_refused(tmp_path):
     points = "".join("<point>%s</point>" % p for p in ("0 0", "1 1", "1 0", "0 1"))
     polyline = "<polyline>%s<height>1</height></polyline>" % points
-    message = world_fault(write(tmp_path, model(polyline)))
+    message = world_fault(world_file(tmp_path, model(polyline)))
     assert "<polyline>" in message and "simple polygon" in message
 
 
@@ -291,7 +284,7 @@ def test_self_crossing_polyline_is_refused(tmp_path):
      '<visual name="c"><geometry><sphere/></geometry></visual></link></model>', "m::l::c"),
 ])
 def test_garbage_content_is_refused(tmp_path, body, words):
-    assert words in world_fault(write(tmp_path, body))
+    assert words in world_fault(world_file(tmp_path, body))
 
 
 def test_not_an_sdf_file(tmp_path):
@@ -317,7 +310,7 @@ def test_unknown_world_name_lists_the_valid_ones():
 def test_paths_resolve_with_and_without_spawn(tmp_path):
     path, spawn = resolve_world(os.path.join(WORLD_DIR, "turtlebot3_world.world"))
     assert spawn == (-2.0, -0.5, 0.0)
-    mine = write(tmp_path, model("<sphere/>"), name="mine.sdf")
+    mine = world_file(tmp_path, model("<sphere/>"), name="mine.sdf")
     assert resolve_world(mine) == (mine, None)
 
 

@@ -11,7 +11,7 @@ from tutorial_turtlebot.sim.world.world_control import WorldControl
 from tutorial_turtlebot.sim.files.world_sdf import load_model_xml, load_world
 from tutorial_turtlebot.sim.files.world_types import Inertial
 
-from unit_helpers import world_fault
+from unit_helpers import world_fault, world_file
 import unit_paths
 
 BOX = '<box><size>1 1 1</size></box>'
@@ -23,13 +23,6 @@ def no_model_path(tmp_path, monkeypatch):
     monkeypatch.delenv("GAZEBO_RESOURCE_PATH", raising=False)
     monkeypatch.chdir(tmp_path)
     cache_clear()
-
-
-def world_file(tmp_path, body, name="test.world"):
-    path = tmp_path / name
-    path.write_text('<?xml version="1.0"?>\n<sdf version="1.6">\n<world name="w">\n%s\n'
-                    '</world>\n</sdf>\n' % body)
-    return str(path)
 
 
 def link(inertial="", geometry=BOX, extra=""):

@@ -7,13 +7,13 @@ import os
 import numpy as np
 import pytest
 
-from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
 from tutorial_turtlebot.sim.engine import physics as physics_module
 from tutorial_turtlebot.sim.files.world_types import Actor, Trajectory, Waypoint
 from tutorial_turtlebot.sim.kinematics import yaw_from_quat
 from tutorial_turtlebot.sim.world.actors import FRAME_PERIOD_S, ActorMotion, PoseCurve
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 
+from texture_fixtures import pixel
 import unit_paths
 
 FIXTURES = unit_paths.FIXTURES
@@ -154,14 +154,6 @@ def sim(monkeypatch):
 def run(sim, seconds):
     for _ in range(int(round(seconds / sim.config.time_step))):
         sim.step()
-
-
-def pixel(sim, point):
-    position, rotation = sim.robot.camera_pose()
-    spec = sim.robot.camera_spec
-    f = CameraIntrinsics.from_spec(spec).f
-    x, y, z = np.asarray(rotation).T @ (np.asarray(point, dtype=float) - position)
-    return int(f * x / z + spec.width / 2), int(f * y / z + spec.height / 2)
 
 
 def coat(sim, rgb, point):

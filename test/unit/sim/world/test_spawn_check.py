@@ -327,7 +327,8 @@ def test_the_rays_run_from_the_robot_top_to_the_requested_z_over_its_footprint()
     rays = RaysDown(0.05)
     assert landed_pose(rays, burger, at(1.0, 2.0, 0.0)) == ((1.0, 2.0, 0.05), at(0, 0)[1])
     points, start, end = rays.asked[0]
-    assert (start, end) == (pytest.approx(top), 0.0)
+    assert (start, end) == (pytest.approx(top), -spawn_check.BURIED_DEPTH)
+    assert len(rays.asked) == 1          # a floor met: one cast
     assert np.hypot(points[:, 0] - 1.0, points[:, 1] - 2.0).max() == pytest.approx(reach)
     assert len(points) > 16
     # a floor no higher than LIFT_TOLERANCE: the pose as given
@@ -338,7 +339,7 @@ def test_the_rays_run_from_the_robot_top_to_the_requested_z_over_its_footprint()
     rays = RaysDown(0.25)
     assert landed_pose(rays, burger, at(1.0, 2.0, 0.0)) == ((1.0, 2.0, 0.25), at(0, 0)[1])
     assert [(start, end) for _, start, end in rays.asked] == [
-        (pytest.approx(top), 0.0), (pytest.approx(top), -spawn_check.BURIED_DEPTH),
+        (pytest.approx(top), -spawn_check.BURIED_DEPTH),
         (spawn_check.BURIED_DEPTH, pytest.approx(top))]
     # on its back (pitched 90 degrees) its top is the back of its chassis, 0.102 m from the root
     rays = RaysDown(-1.0)
