@@ -3,6 +3,7 @@
 #   make test   set up, then every test: unit (pytest, no master) and rostest (the real sim)
 #   make bench  set up, then the benchmark table
 #   make corpus set up, then public Gazebo worlds through the sim (not in make test)
+#   make peer   set up, then gazebo_ros_pkgs' own tests against the sim (not in make test)
 #   make unit / make rostest   the two halves of make test
 #   make plan   what the set-up would install here (nothing is installed)
 # Each target does its own set-up first (tools/setup.sh, idempotent); the test targets also
@@ -44,6 +45,13 @@ bench: setup
 .PHONY: corpus
 corpus: setup
 	@$(ROS_ENV) && python3 bench/corpus.py $(CORPUS_ARGS)
+
+# make peer: not part of make test. gazebo_ros_pkgs' own tests, unmodified, the sim standing in
+# for gzserver (tools/peer/run_peer.py; doc/peer.md); the peer's tree lies outside the
+# repository in $PEER_SRC (tools/peer/fetch_peer.py makes it). PEER_ARGS="--only NAME,NAME".
+.PHONY: peer
+peer: setup
+	@$(ROS_ENV) && python3 tools/peer/run_peer.py $(PEER_ARGS)
 
 # make train: not part of make test. Installs the train extra on first use (stable-baselines3,
 # a CPU build of torch, matplotlib: tools/install_extra.sh), then trains DQN on learning stage 1

@@ -4,6 +4,9 @@ from setuptools import setup
 
 setup(**generate_distutils_setup(
     packages=["tutorial_turtlebot", "tutorial_turtlebot.sim", "tutorial_turtlebot.sim.files",
+              "tutorial_turtlebot.sim.files.sdf", "tutorial_turtlebot.sim.files.urdf",
+              "tutorial_turtlebot.sim.files.meshes", "tutorial_turtlebot.sim.files.looks",
+              "tutorial_turtlebot.sim.files.plugins",
               "tutorial_turtlebot.sim.engine", "tutorial_turtlebot.sim.devices",
               "tutorial_turtlebot.sim.world", "tutorial_turtlebot.gazebo",
               "tutorial_turtlebot.gazebo.impl", "tutorial_turtlebot.lab",

@@ -276,7 +276,7 @@ def never_reading_subscribers(address, count):
 
 
 def soak(minutes: float) -> dict:
-    from tutorial_turtlebot.sim.files.urdf_file import urdf_path
+    from tutorial_turtlebot.sim.files.urdf.urdf_file import urdf_path
     with open(urdf_path("burger", False)) as f:
         burger = f.read()
     tmp = tempfile.mkdtemp(prefix="hostile_soak_")

@@ -20,7 +20,7 @@ from geometry_msgs.msg import Pose
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, os.pardir, "src"))
 
-from tutorial_turtlebot.sim.files.urdf_file import urdf_path  # noqa: E402
+from tutorial_turtlebot.sim.files.urdf.urdf_file import urdf_path  # noqa: E402
 
 PER_ROW = 4
 ROWS = 2

@@ -634,7 +634,7 @@ def robots_bound(count, world="empty", poses=None, wall_seconds=3.0):
     (scan, odom, imu, joint_states), as the node computes it for a subscriber."""
     import math
     from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-    from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+    from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
     from multi_robot import grid_pose
     if poses is None:
         poses = [(p.x, p.y, 0.0) for p in (grid_pose(i).position for i in range(count))]
@@ -656,7 +656,7 @@ def render_times(frames=10):
     """Median ms per rendered frame at each RESOLUTIONS size, with EGL (where it loads) and
     with TinyRenderer, from the Waffle Pi's camera pose at the turtlebot3_world spawn."""
     from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
-    from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
+    from tutorial_turtlebot.sim.files.plugins.robot_plugin_types import CameraSpec
     from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
     results = {}
     pose = None  # the camera's optical frame in the world: (position, 3x3 rotation)

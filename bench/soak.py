@@ -54,7 +54,7 @@ def _churn(pid: int, sim_seconds: float, robots: int, every: float) -> bool:
     from rosgraph_msgs.msg import Clock
     from std_srvs.srv import Empty
     from multi_robot import grid_pose
-    from tutorial_turtlebot.sim.files.urdf_file import urdf_path
+    from tutorial_turtlebot.sim.files.urdf.urdf_file import urdf_path
 
     rospy.init_node("soak", anonymous=True, disable_signals=True)
     names = ["spawn_urdf_model", "spawn_sdf_model", "delete_model", "reset_world",

@@ -22,7 +22,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "src"))
 
 from tutorial_turtlebot.sim.devices.camera import CameraRenderer  # noqa: E402
-from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec  # noqa: E402
+from tutorial_turtlebot.sim.files.plugins.robot_plugin_types import CameraSpec  # noqa: E402
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation  # noqa: E402
 
 WIDTH, HEIGHT = 960, 540

@@ -1,8 +1,8 @@
 """The three TurtleBot3 models: what no URDF holds (doc/turtlebot3.md 2.5).
 
 A robot's drive, laser, IMU and camera come from its URDF's ``<gazebo>`` blocks
-(``sim.files.robot_plugins``); what is here is the firmware's and turtlebot3_teleop_key's speed
-limits, the circle each model sweeps turning in place, and which URDF file each model is. The
+(``sim.files.plugins.robot_plugins``); what is here is the firmware's and turtlebot3_teleop_key's
+speed limits, the circle each model sweeps turning in place, and which URDF file each model is. The
 simulator and the lab's nodes both read these facts here. Units: m, m/s, rad/s.
 """
 import re

@@ -239,6 +239,14 @@ class SimTestCase(unittest.TestCase):
         cls.gz = Gazebo()
 
 
+def spawn_model(*args: str):
+    """``rosrun tutorial_turtlebot spawn_model ARGS`` (gazebo_ros's command line) run to its
+    end, within WAIT wall s: (exit status, what it printed)."""
+    done = subprocess.run(["rosrun", "tutorial_turtlebot", "spawn_model"] + list(args),
+                          capture_output=True, text=True, timeout=WAIT)
+    return done.returncode, done.stdout + done.stderr
+
+
 def executable(name: str, package: str = "tutorial_turtlebot") -> str:
     """Path of a node executable as roslaunch (and rosrun) find it: the devel or install space
     relay first."""

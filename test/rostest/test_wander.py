@@ -18,8 +18,8 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
 from sim_test_support import Recorder, wait_for, yaw_of
-from tutorial_turtlebot.sim.files.world_catalogue import resolve_world
-from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.sdf.world_catalogue import resolve_world
+from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 
 CLEARANCE = 0.01  # m
 CELL = 0.5        # m, grid for "covers ground"

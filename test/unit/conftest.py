@@ -38,7 +38,7 @@ def client():
 def mesh_cache_home(tmp_path_factory, monkeypatch):
     """Every test has an empty disk mesh cache of its own (mesh_cache), under a ROS_HOME of its
     own: no test reads what another wrote, none writes into the user's cache."""
-    from tutorial_turtlebot.sim.files import mesh_cache
+    from tutorial_turtlebot.sim.files.meshes import mesh_cache
 
     home = tmp_path_factory.mktemp("ros_home")
     monkeypatch.setenv("ROS_HOME", str(home))

@@ -1,4 +1,4 @@
-"""Shared by the disk mesh cache's tests (test/unit/sim/files/test_mesh_cache.py and
+"""Shared by the disk mesh cache's tests (test/unit/sim/files/meshes/test_mesh_cache.py and
 test_mesh_prefetch.py; their fixtures, in test/unit/sim/files/conftest.py, are made of these):
 bench/mesh_world.py's textured Collada models, the reads mesh_file makes, a comparison of two
 meshes, the cache's entries. Imported by name, as unit_helpers is."""
@@ -29,7 +29,7 @@ def dae(models, number):
 def record_reads(monkeypatch):
     """A list that gets the files mesh_file really reads (its reader, not the cache), in
     order."""
-    from tutorial_turtlebot.sim.files import mesh_file
+    from tutorial_turtlebot.sim.files.meshes import mesh_file
     seen = []
     real = mesh_file._read
     monkeypatch.setattr(mesh_file, "_read", lambda path, *rest: seen.append(path)
@@ -51,7 +51,7 @@ def assert_same(a, b):
 
 def entries():
     """The cache's entry files (sorted names), none when it has no folder yet."""
-    from tutorial_turtlebot.sim.files import mesh_cache
+    from tutorial_turtlebot.sim.files.meshes import mesh_cache
     folder = mesh_cache.cache_dir()
     return sorted(f for f in os.listdir(folder) if f.endswith(".npz")) if os.path.isdir(
         folder) else []

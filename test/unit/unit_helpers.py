@@ -63,7 +63,7 @@ CUBE = box_sdf(0.15, 2.0, visual=False)   # a 2 kg cube 0.15 m across, no visual
 
 def urdf_text(model):
     """The package's URDF of a TurtleBot3 ``model`` (burger, waffle, waffle_pi), as text."""
-    from tutorial_turtlebot.sim.files.urdf_file import urdf_path
+    from tutorial_turtlebot.sim.files.urdf.urdf_file import urdf_path
 
     with open(urdf_path(model)) as f:
         return f.read()
@@ -144,7 +144,7 @@ def world_fault(path):
     file)."""
     import pytest
     from tutorial_turtlebot.errors import WorldError
-    from tutorial_turtlebot.sim.files.world_sdf import load_world
+    from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
     with pytest.raises(WorldError) as err:
         load_world(path)
     message = str(err.value)

@@ -9,6 +9,7 @@ robot's namespace; for a TurtleBot3 (frame ``camera_rgb_optical_frame``, one ren
   camera/depth/image_raw (32FC1, metres, NaN outside 0.4..5 m), camera/depth/camera_info,
   camera/depth/points (sensor_msgs/PointCloud2, organized, x y z rgb)
 ``camera/image`` and ``camera/camera_info`` are the real robot's names (its cv_camera).
+A robot's further cameras (SimRobot.cameras) have a CameraPublisher each, with their own names.
 Nothing is rendered or encoded for topics nobody subscribes to.
 """
 import rospy
@@ -31,15 +32,22 @@ def camera_info(intrinsics: CameraIntrinsics, width: int, height: int,
 
 
 class CameraPublisher:
-    """Renders a robot's camera when one of its topics has a subscriber, and publishes."""
+    """Renders one of a robot's cameras when one of its topics has a subscriber, and
+    publishes."""
 
     def __init__(self, robot, make_publisher=rospy.Publisher, namespace: str = "",
-                 frame_prefix: str = ""):
+                 frame_prefix: str = "", index: int = 0):
         """``robot``: a SimRobot with a camera (``camera_sensor``, ``camera_image``);
         ``make_publisher(topic, type, queue_size=...)``: rospy.Publisher, or a stand-in;
-        topics in ``namespace`` ("" = the node's), frames prefixed with ``frame_prefix``."""
-        self.robot = robot
-        spec, sensor = robot.camera_spec, robot.camera_sensor
+        topics in ``namespace`` ("" = the node's), frames prefixed with ``frame_prefix``;
+        ``index``: which of the robot's ``cameras`` (0: the first, ``camera_sensor``)."""
+        self.robot, self.index = robot, index
+        if index == 0:
+            spec, sensor = robot.camera_spec, robot.camera_sensor
+            self.intrinsics = robot.camera_intrinsics
+        else:
+            camera = robot.cameras[index]
+            spec, sensor, self.intrinsics = camera.spec, camera.sensor, camera.intrinsics
         base = ns_join(namespace, sensor.camera_name) if namespace else sensor.camera_name
 
         advertised = set()
@@ -62,7 +70,7 @@ class CameraPublisher:
             self.info_pubs += pubs(CameraInfo, sensor.depth_info_topic)
             self.points_pubs = pubs(PointCloud2, sensor.point_cloud_topic)
         frame = frame_prefix + sensor.frame.lstrip("/")
-        self.info = camera_info(robot.camera_intrinsics, spec.width, spec.height, frame)
+        self.info = camera_info(self.intrinsics, spec.width, spec.height, frame)
         self.image = Image(height=spec.height, width=spec.width, encoding="rgb8",
                            is_bigendian=0, step=3 * spec.width)
         self.image.header.frame_id = frame
@@ -88,7 +96,9 @@ class CameraPublisher:
             pub.publish(self.info)
         if not (images or jpegs or depths or points):
             return
-        rgb, depth = self.robot.camera_image(depth=bool(depths or points))
+        wants_depth = bool(depths or points)
+        rgb, depth = (self.robot.camera_image(depth=wants_depth, index=self.index) if self.index
+                      else self.robot.camera_image(depth=wants_depth))
         if images:
             self.image.header.stamp = stamp
             self.image.data = rgb.tobytes()
@@ -108,7 +118,7 @@ class CameraPublisher:
             self._publish_points(stamp, rgb, depth, points)
 
     def _publish_points(self, stamp, rgb, depth, pubs) -> None:
-        xyz, colours = pointcloud_xyz(depth, self.robot.camera_intrinsics, organized=True,
+        xyz, colours = pointcloud_xyz(depth, self.intrinsics, organized=True,
                                       rgb=rgb)
         data, point_step, fields = pointcloud_bytes(xyz, colours)
         msg = self.points

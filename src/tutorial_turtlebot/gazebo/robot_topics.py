@@ -11,11 +11,19 @@ For a TurtleBot3:
   imu (sensor_msgs/Imu)                 200 Hz, imu_link, linear acceleration includes gravity
   imu_service (std_srvs/Empty)          does nothing, as gazebo_ros_imu's
   camera/... (waffle, waffle_pi, a burger given a camera): see camera_publisher
+A robot with several lasers or cameras publishes each on its own topics, in its own frame,
+at its own rate (the first's output is "scan" / "camera", the others' "scan:1", ...).
   cmd_vel (geometry_msgs/Twist) in: linear.x (m/s), angular.z (rad/s), kept until the next
 As the plugins: the diff drive's publishTf false publishes no odometry at all, publishOdomTF
 false only no TF; a plugin's own <robotNamespace> replaces the robot's for its topics.
+Another drive (skid steer, planar move, tricycle, force-based move) subscribes its
+commandTopic and publishes its odometryTopic in odometryFrame -> robotBaseFrame with its pose
+covariance, the TF as it says (the skid steer's broadcastTF, the force-based move's
+publishOdometryTf; the others' always), a tricycle's publishWheelJointState its four joints on
+joint_states; a planar or force-based move also reads linear.y.
 A message type nobody subscribes to is not even computed.
 """
+import functools
 import math
 
 import rospy
@@ -45,7 +53,8 @@ class RobotTopics:
 
     def __init__(self, robot, make_publisher, tf_publisher):
         """``make_publisher(topic, type, queue_size=1)`` gives a (non-blocking) publisher;
-        ``tf_publisher``: the node's one publisher of tf2_msgs/TFMessage on /tf. Whatever
+        ``tf_publisher``: the node's one publisher of tf2_msgs/TFMessage on /tf (None for a
+        robot without a drive plugin: it publishes no transform). Whatever
         fails on the way (a topic ROS refuses, a message that cannot be built) is raised
         after every topic made so far is taken back: nothing of the robot is left behind."""
         self.robot = robot
@@ -57,10 +66,14 @@ class RobotTopics:
         self.publishers = {}   # what the robot's schedules name (SimRobot.due), by name
         self.services = []
         self.subscriber = None
-        self.camera = None
+        self.camera = None               # the first camera's CameraPublisher
+        self.cameras = []                # every camera's, in the robot's order
+        self._frame_pubs = {}            # a camera's output -> its publishers that need a frame
+        self.scans_packed = {}           # a laser's output -> its PackedLaserScan
         self._advertised = []  # every publisher made for this robot, the camera's too
         # sensor readings published, for ~performance_metrics (world_api)
         self.sensor_updates = {"scan": 0, "imu": 0, "camera": 0}
+        self.sensor_updates.update((sensor.output, 0) for sensor in robot.lasers + robot.cameras)
         # camera ticks the loop skipped, being behind the wall clock (LoopPacer.frame_in_time)
         self.frames_skipped = 0
 
@@ -76,7 +89,7 @@ class RobotTopics:
 
     def _advertise(self, make_publisher) -> None:
         robot = self.robot
-        drive, laser, imu = robot.drive_plugin, robot.laser_sensor, robot.imu_plugin
+        drive, imu = robot.drive_plugin, robot.imu_plugin
         if "odom" in robot.schedules:
             self.pubs["odom"] = make_publisher(self.topic(drive.odometry_topic, drive), Odometry)
             self.publishers["odom"] = self._publish_odom
@@ -84,19 +97,26 @@ class RobotTopics:
             self.pubs["joint_states"] = make_publisher(self.topic("joint_states", drive),
                                                        JointState)
             self.publishers["joint_states"] = self._publish_joints
-        if laser:
-            self.pubs["scan"] = make_publisher(self.topic(laser.topic, laser), LaserScan)
-            self.publishers["scan"] = self._publish_scan
+        for index, laser in enumerate(robot.lasers):
+            self.pubs[laser.output] = make_publisher(self.topic(laser.sensor.topic,
+                                                                laser.sensor), LaserScan)
+            self.publishers[laser.output] = (self._publish_scan if index == 0 else
+                                             functools.partial(self._publish_scan, index=index))
         if imu:
             self.pubs["imu"] = make_publisher(self.topic(imu.topic, imu), Imu)
             self.publishers["imu"] = self._publish_imu
             self.services.append(rospy.Service(self.topic(imu.service_name, imu), Empty,
                                                lambda _request: EmptyResponse()))
-        if robot.camera is not None:
-            self.camera = CameraPublisher(robot, make_publisher, self.namespace, self.prefix)
-            self.publishers["camera"] = self._publish_camera
-            self._frame_pubs = (self.camera.image_pubs + self.camera.jpeg_pubs
-                                + self.camera.depth_pubs + self.camera.points_pubs)
+        for index, camera in enumerate(robot.cameras):
+            publisher = CameraPublisher(robot, make_publisher, self.namespace, self.prefix,
+                                        index=index)
+            self.cameras.append(publisher)
+            self.publishers[camera.output] = (
+                self._publish_camera if index == 0
+                else functools.partial(self._publish_camera, index=index))
+            self._frame_pubs[camera.output] = (publisher.image_pubs + publisher.jpeg_pubs
+                                               + publisher.depth_pubs + publisher.points_pubs)
+        self.camera = self.cameras[0] if self.cameras else None
         self._build_messages()
         if drive:
             self.subscriber = rospy.Subscriber(self.topic(drive.command_topic, drive), Twist,
@@ -130,17 +150,22 @@ class RobotTopics:
         if drive:
             odom_frame = self.frame(drive.odometry_frame)
             base_frame = self.frame(drive.robot_base_frame)
-            self.odom_packed = PackedOdometry(odom_frame, base_frame, POSE_COVARIANCE_DIAGONAL)
+            covariance = getattr(drive, "pose_covariance", POSE_COVARIANCE_DIAGONAL)
+            self.odom_packed = PackedOdometry(odom_frame, base_frame, covariance)
             self.tf_packed = PackedTransform(odom_frame, base_frame)
+        if robot.diff_plugin:
             self.joints_packed = PackedJointState("", [drive.left_joint, drive.right_joint])
-        laser = robot.laser
-        if laser:
+        elif "joint_states" in robot.schedules:   # a tricycle's publishWheelJointState
+            self.joints_packed = PackedJointState("", robot.motion.joint_names)
+        for index, sensor in enumerate(robot.lasers):
+            laser = robot.laser if index == 0 else sensor.config
             scan = LaserScan(angle_min=laser.angle_min, angle_max=laser.angle_max,
                              angle_increment=laser.angle_increment, time_increment=0.0,
                              scan_time=0.0, range_min=laser.range_min,
                              range_max=laser.range_max, intensities=[0.0] * laser.samples)
-            scan.header.frame_id = self.frame(robot.laser_sensor.frame)
-            self.scan_packed = PackedLaserScan(scan)
+            scan.header.frame_id = self.frame(sensor.sensor.frame)
+            self.scans_packed[sensor.output] = PackedLaserScan(scan)
+        self.scan_packed = self.scans_packed.get("scan")   # the first laser's
         if robot.imu_plugin:   # gazebo_ros_imu's covariances: the noise's variance
             self.imu_packed = PackedImu(self.frame(robot.imu_plugin.frame),
                                         robot.imu_plugin.gaussian_noise ** 2)
@@ -175,17 +200,19 @@ class RobotTopics:
         packed.write(positions, velocities)
         self.pubs["joint_states"].publish_packed(packed)
 
-    def _publish_scan(self, stamp) -> None:
-        if self.pubs["scan"].get_num_connections() == 0:
+    def _publish_scan(self, stamp, index: int = 0) -> None:
+        """Laser ``index``'s scan (of SimRobot.lasers), cast only for a subscriber."""
+        output = self.robot.lasers[index].output
+        if self.pubs[output].get_num_connections() == 0:
             return
         TIMES.switch("sensors")
-        ranges = self.robot.scan()
+        ranges = self.robot.scan(index) if index else self.robot.scan()
         TIMES.switch("serializing")
-        packed = self.scan_packed
+        packed = self.scans_packed[output]
         packed.set_stamp(stamp.secs, stamp.nsecs)
         packed.write(ranges)
-        self.pubs["scan"].publish_packed(packed)
-        self.sensor_updates["scan"] += 1
+        self.pubs[output].publish_packed(packed)
+        self.sensor_updates[output] += 1
 
     def _publish_imu(self, stamp) -> None:
         if self.pubs["imu"].get_num_connections() == 0:
@@ -199,12 +226,13 @@ class RobotTopics:
         self.pubs["imu"].publish_packed(packed)
         self.sensor_updates["imu"] += 1
 
-    def _publish_camera(self, stamp) -> None:
-        """A camera tick; a frame is rendered (and counted) only for a subscriber."""
-        if any(pub.get_num_connections() > 0 for pub in self._frame_pubs):
-            self.sensor_updates["camera"] += 1
+    def _publish_camera(self, stamp, index: int = 0) -> None:
+        """Camera ``index``'s tick; a frame is rendered (and counted) only for a subscriber."""
+        output = self.robot.cameras[index].output
+        if any(pub.get_num_connections() > 0 for pub in self._frame_pubs[output]):
+            self.sensor_updates[output] += 1
         TIMES.switch("sensors")   # rendering; its messages are built from the frame
-        self.camera.publish(stamp)
+        self.cameras[index].publish(stamp)
 
     # --- input -----------------------------------------------------------------------------------
 
@@ -213,6 +241,14 @@ class RobotTopics:
         if not (math.isfinite(linear) and math.isfinite(angular)):
             rospy.logwarn_throttle(5.0, "%s ignored: NaN or infinite field (linear.x=%r, "
                                    "angular.z=%r)" % (self.subscriber.name, linear, angular))
+            return
+        if self.robot.motion is not None:   # another drive: linear.y too (a planar move's)
+            lateral = msg.linear.y
+            if not math.isfinite(lateral):
+                rospy.logwarn_throttle(5.0, "%s ignored: NaN or infinite linear.y (%r)"
+                                       % (self.subscriber.name, lateral))
+                return
+            self.command = (linear, angular, lateral)
             return
         self.command = (linear, angular)
 

@@ -7,13 +7,19 @@ It owns the clock: physics runs at ``~max_step_size`` of sim time per step, pace
 Publications (relative names resolve in the node's namespace, as Gazebo's plugins do):
   /clock (rosgraph_msgs/Clock)          ~clock_rate Hz of sim time (100), at most
                                         ~pub_clock_frequency a wall second (1000)
-  /tf (tf2_msgs/TFMessage)              every robot's odom -> base_footprint, 30 Hz
+  /tf (tf2_msgs/TFMessage)              every robot's odom -> base_footprint, 30 Hz; advertised
+                                        while a robot with a drive plugin (or an SDF
+                                        model with a diff drive) is in the world
   each robot's topics, made from its URDF's <gazebo> plugins: see robot_topics
   (sim.launch's robot in the node's namespace: odom, joint_states, scan, imu, camera/...,
   subscribing cmd_vel; one spawned with robot_namespace tb3_0: /tb3_0/odom, ...)
+  each world model's sensors with a gazebo_ros plugin (a camera, a laser, a range sensor, a
+  block laser): see world_sensor_topics; each model plugin (p3d, joint_state_publisher,
+  hector's imu and gps) of a world model or robot: see model_plugin_topics
   A message type nobody subscribes to is not even computed.
 Services: ~reset_simulation, ~reset_world, ~pause_physics, ~unpause_physics and the rest of
   Gazebo's world API: see world_api (which reaches the node through its public methods)
+  (none of it with ~enable_ros_network false: then only /clock and the robots' topics)
 Parameters (private):
   ~model (burger)             burger, waffle or waffle_pi
   ~spawn_robot (true)         false: no robot of its own; robots come by spawn_urdf_model
@@ -41,6 +47,8 @@ Parameters (private):
                               messages it could not tell apart (1 ms of wall time each)
   ~status_period (10.0)       wall s between status lines (sim time, factor, pose); 0 = never
   ~seed (0)                   laser noise seed
+  ~enable_ros_network (true)  Gazebo's: false offers no world API (topics, services, physics
+                              reconfigure); /clock and the robots' plugin topics stay
 """
 import math
 import os
@@ -70,11 +78,16 @@ from . import part_times
 from .part_times import TIMES
 from ..sim.world.pacing import check_rtf
 from .robot_topics import RobotTopics
+from .running_topics import OUTPUT_ERROR_PERIOD
+from .model_plugin_topics import ModelPluginTopics
+from .world_sensor_topics import WorldSensorTopics
 from .send_queue import SendQueue
 from .single_instance import refuse_if_running
 from ..sim.world.simulation import SimConfig, Simulation
-from ..sim.files import mesh_cache
-from ..sim.files.world_catalogue import world_from_command_line
+from ..sim.world.model_plugins import MODEL_PLUGINS
+from ..sim.world.world_sensors import WORLD_SENSORS
+from ..sim.files.meshes import mesh_cache
+from ..sim.files.sdf.world_catalogue import world_from_command_line
 
 SHUTDOWN_CHECK_STEPS = 200
 # The longest (wall s) the loop keeps the GIL while another thread of the node waits for it:
@@ -87,7 +100,6 @@ GIL_SWITCH_INTERVAL = 0.0005
 FAST_RAY_THREADS = 2
 # A robot output that fails (an exception making a scan, an image ...) is skipped and named in
 # one line, at most once this many wall seconds per robot and output.
-OUTPUT_ERROR_PERIOD = 10.0
 
 
 _private_params = None   # the node's private parameters, read from the master once
@@ -140,7 +152,8 @@ class SimNode:
     them."""
 
     def __init__(self, sim: Simulation, real_time_factor: float, paused: bool,
-                 status_period: float, pub_clock_frequency: float = 1000.0):
+                 status_period: float, pub_clock_frequency: float = 1000.0,
+                 enable_ros_network: bool = True):
         self.sim = sim
         self.requests = LoopRequests()   # what callbacks hand to the loop, and its wake-up
         self.stop_requested = False  # set by the SIGINT/SIGTERM handler of main()
@@ -155,17 +168,28 @@ class SimNode:
         # that stops reading loses old messages instead of stalling the simulation.
         self.sends = SendQueue()
         self.clock_pub = self.advertise("/clock", Clock)
-        # tf2_ros.TransformBroadcaster's publisher (the transforms are packed_messages')
-        self.tf_pub = self.advertise("/tf", TFMessage, queue_size=100)
+        # tf2_ros.TransformBroadcaster's publisher (the transforms are packed_messages'), made
+        # with the first robot that has a drive plugin (sync_robots)
+        self.tf_pub = None
         self.publishers = {"clock": self._publish_clock}   # the world's outputs
         self.robot_topics = {}                               # robot name -> RobotTopics
         self._topics = []
         self._output_errors = {}   # (robot, output) -> the wall time its next error is logged
         self.sync_robots()
+        # the world models' sensors, as their gazebo_ros plugins (world_sensor_topics)
+        self.world_sensors = WorldSensorTopics(sim, self.advertise)
+        self.add_output(WORLD_SENSORS, self.world_sensors.publish)
+        # the models' and robots' model plugins: p3d, joint states, hector's (model_plugin_topics)
+        self.model_plugins = ModelPluginTopics(sim, self.advertise, self)
+        self.add_output(MODEL_PLUGINS, self.model_plugins.publish)
         # Gazebo's world API: reset, pause, model/link states, spawn, delete, physics
         # (gazebo/world_api.py); advertised after every sensor topic (test_camera.py waits for
-        # it as the last).
-        self.world_api = WorldApi(self, _param("model_states_rate", 100.0, float))
+        # it as the last). With ~enable_ros_network false, none of it (as gazebo_ros).
+        self.world_api = None
+        if enable_ros_network:
+            self.world_api = WorldApi(self, _param("model_states_rate", 100.0, float))
+        else:
+            rospy.loginfo("gazebo: ~enable_ros_network is false: no world API topics or services")
 
     # --- the node's public API (world_api) ------------------------------------------------------
 
@@ -221,6 +245,7 @@ class SimNode:
         takes its own topics back), and RequestError says why in one line."""
         for name in [n for n in self.robot_topics if n not in self.sim.robots]:
             self.robot_topics.pop(name).close()
+        self._sync_tf()
         failed = None
         for name, robot in list(self.sim.robots.items()):
             if name not in self.robot_topics:
@@ -234,8 +259,21 @@ class SimNode:
                 for warning in robot.warnings:
                     rospy.logwarn("%s: %s", name, warning)
         self._topics = list(self.robot_topics.values())   # what the loop walks every step
+        self._sync_tf()
         if failed is not None:
             raise failed
+
+    def _sync_tf(self) -> None:
+        """/tf is advertised while a robot with a drive plugin, or an SDF model with a diff
+        drive, is in the world (the transform broadcaster of gazebo_ros_diff_drive, whatever
+        its publishOdomTF), and not without."""
+        wanted = (any(robot.drive_plugin for robot in self.sim.robots.values())
+                  or bool(self.sim.model_plugins.drives(self.sim.time_ns)))
+        if wanted and self.tf_pub is None:
+            self.tf_pub = self.advertise("/tf", TFMessage, queue_size=100)
+        elif not wanted and self.tf_pub is not None:
+            self.tf_pub.unregister()
+            self.tf_pub = None
 
     # --- messages --------------------------------------------------------------------------------
 
@@ -511,13 +549,15 @@ def main() -> None:
     mesh_cache.warning_sink = _log_warning     # the disk mesh cache's one line, if any
     try:
         config, real_time_factor, paused, status_period, pub_clock_frequency = _node_params()
+        enable_ros_network = _param("enable_ros_network", True, bool)
         sim = Simulation(config)
     except UserError as err:
         rospy.logfatal("gazebo: %s", err)
         sys.exit(2)
     _log_start(sim, config, real_time_factor)
     try:
-        node = SimNode(sim, real_time_factor, paused, status_period, pub_clock_frequency)
+        node = SimNode(sim, real_time_factor, paused, status_period, pub_clock_frequency,
+                       enable_ros_network)
     except RequestError as err:   # the robot's topics (sync_robots)
         rospy.logfatal("gazebo: %s", err)
         sim.close()

@@ -21,8 +21,9 @@ Services:
   ~get_model_properties, ~spawn_sdf_model, ~spawn_urdf_model, ~delete_model,
   ~get_physics_properties, ~set_physics_properties, ~apply_body_wrench, ~clear_body_wrenches,
   ~apply_joint_effort, ~clear_joint_forces, ~get_link_properties, ~set_link_properties,
-  ~get_joint_properties, ~set_model_configuration, ~get_light_properties,
-  ~set_light_properties; dynamic_reconfigure of the physics (gazebo/physics_config) on ``~``.
+  ~get_joint_properties, ~set_joint_properties, ~set_model_configuration,
+  ~get_light_properties, ~set_light_properties, ~delete_light; dynamic_reconfigure of the
+  physics (gazebo/physics_config) on ``~``.
   get_model_properties' geom_names are Gazebo's collision names (urdf_file.RobotDescription.
   collision_names for a URDF: "<link>_collision", "<link>_fixed_joint_lump__<child>_
   collision_<i>"). The wrench, effort, link, joint and light semantics: sim/world_control.
@@ -40,7 +41,8 @@ from gazebo_msgs.msg import (LinkState, LinkStates, ModelState, ModelStates, ODE
                              PerformanceMetrics, SensorPerformanceMetric)
 from gazebo_msgs.srv import (ApplyBodyWrench, ApplyBodyWrenchResponse, ApplyJointEffort,
                              ApplyJointEffortResponse, BodyRequest, BodyRequestResponse,
-                             DeleteModel, DeleteModelResponse, GetJointProperties,
+                             DeleteLight, DeleteLightResponse, DeleteModel,
+                             DeleteModelResponse, GetJointProperties,
                              GetJointPropertiesResponse, GetLightProperties,
                              GetLightPropertiesResponse, GetLinkProperties,
                              GetLinkPropertiesResponse, GetLinkState, GetLinkStateResponse,
@@ -48,6 +50,7 @@ from gazebo_msgs.srv import (ApplyBodyWrench, ApplyBodyWrenchResponse, ApplyJoin
                              GetModelStateResponse, GetPhysicsProperties,
                              GetPhysicsPropertiesResponse, GetWorldProperties,
                              GetWorldPropertiesResponse, JointRequest, JointRequestResponse,
+                             SetJointProperties, SetJointPropertiesResponse,
                              SetLightProperties, SetLightPropertiesResponse, SetLinkProperties,
                              SetLinkPropertiesResponse, SetLinkState, SetLinkStateResponse,
                              SetModelConfiguration, SetModelConfigurationResponse,
@@ -64,6 +67,7 @@ from ..sim.world.physics_properties import OdeConfig, PhysicsProperties
 from ..sim.world.spawn_request import prepare_spawn
 from ..sim.world.world_control import WorldControl
 from ..sim.world.world_models import spawn_failure
+from ..sim.world.world_properties import JOINT_CONFIG_FIELDS
 
 METRICS_PERIOD = 1.0     # wall s between two ~performance_metrics
 MAX_LOG_LINE = 200       # characters of one warning line in the log
@@ -193,10 +197,12 @@ class WorldApi:
                 ("get_link_properties", GetLinkProperties, self._get_link_properties),
                 ("set_link_properties", SetLinkProperties, self._set_link_properties),
                 ("get_joint_properties", GetJointProperties, self._get_joint_properties),
+                ("set_joint_properties", SetJointProperties, self._set_joint_properties),
                 ("set_model_configuration", SetModelConfiguration,
                  self._set_model_configuration),
                 ("get_light_properties", GetLightProperties, self._get_light_properties),
-                ("set_light_properties", SetLightProperties, self._set_light_properties)):
+                ("set_light_properties", SetLightProperties, self._set_light_properties),
+                ("delete_light", DeleteLight, self._delete_light)):
             wrap = self._answered if name.startswith("spawn_") else self._in_loop
             rospy.Service("~" + name, srv_type,
                           wrap(name, srv_type, refusals_answered(srv_type, handler)))
@@ -451,6 +457,12 @@ class WorldApi:
         resp.success, resp.status_message = True, "GetJointProperties: got properties"
         return resp
 
+    def _set_joint_properties(self, req):
+        config = req.ode_joint_config
+        self.control.set_joint_properties(
+            req.joint_name, {field: getattr(config, field) for field in JOINT_CONFIG_FIELDS})
+        return SetJointPropertiesResponse(True, "SetJointProperties: properties set")
+
     def _set_model_configuration(self, req):
         status = self.control.set_model_configuration(   # urdf_param_name: ignored, as Gazebo
             req.model_name, list(req.joint_names), list(req.joint_positions))
@@ -474,6 +486,9 @@ class WorldApi:
             (req.attenuation_constant, req.attenuation_linear, req.attenuation_quadratic),
             (v.x, v.y, v.z), pose_in(req.pose))
         return SetLightPropertiesResponse(True, "")
+
+    def _delete_light(self, req):
+        return DeleteLightResponse(True, self.control.delete_light(req.light_name))
 
 
 def _lumped_link(description, link: str) -> str:

@@ -41,7 +41,7 @@ import gymnasium
 import numpy as np
 from gymnasium import spaces
 
-from ..sim.files.world_catalogue import WORLD_DIR
+from ..sim.files.sdf.world_catalogue import WORLD_DIR
 from ..sim.kinematics import yaw_from_quat
 from ..sim.world.simulation import SimConfig, Simulation
 from ..sim.world.world_control import WorldControl

@@ -5,7 +5,7 @@ import rospy
 
 from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
 from tutorial_turtlebot.gazebo.camera_publisher import CameraPublisher
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
 
 
 class FakePublisher:

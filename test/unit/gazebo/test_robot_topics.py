@@ -6,7 +6,7 @@ import rospy
 from tutorial_turtlebot.gazebo import robot_topics
 from tutorial_turtlebot.gazebo.robot_topics import RobotTopics, frame_prefix
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.files.urdf_file import urdf_path
+from tutorial_turtlebot.sim.files.urdf.urdf_file import urdf_path
 from tutorial_turtlebot.sim.world.world_control import WorldControl
 
 

@@ -11,8 +11,8 @@ import pytest
 
 from tutorial_turtlebot.learning import robotis_stages as rs
 from tutorial_turtlebot.learning import robotis_stages_ros2 as r2
-from tutorial_turtlebot.sim.files.world_catalogue import WORLD_DIR
-from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.sdf.world_catalogue import WORLD_DIR
+from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 
 
 def f32(value):

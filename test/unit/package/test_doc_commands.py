@@ -503,8 +503,8 @@ def spot_problems(page, text, world):
 
 @pytest.fixture(scope="module")
 def turtlebot3_world():
-    from tutorial_turtlebot.sim.files.world_catalogue import resolve_world
-    from tutorial_turtlebot.sim.files.world_sdf import load_world
+    from tutorial_turtlebot.sim.files.sdf.world_catalogue import resolve_world
+    from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 
     return load_world(resolve_world("turtlebot3_world")[0])
 

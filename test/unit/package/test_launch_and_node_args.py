@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 import pytest
 import yaml
 
-from tutorial_turtlebot.sim.files.world_catalogue import world_from_command_line
+from tutorial_turtlebot.sim.files.sdf.world_catalogue import world_from_command_line
 from tutorial_turtlebot.gazebo.single_instance import running_simulator
 import unit_paths
 

@@ -68,13 +68,14 @@ def imported_modules():
 
 def local_modules():
     """The package's own modules, the tests' helper modules (files beside them), the
-    benchmark's (bench/, which tests import too) and the tools' scripts (tools/corpus/)."""
+    benchmark's (bench/, which tests import too) and the tools' scripts (tools/corpus/,
+    tools/peer/)."""
     names = {"tutorial_turtlebot"}
     for top in ("test/unit", "test/rostest", "test"):
         for name in os.listdir(os.path.join(ROOT, top)):
             stem = name[:-3] if name.endswith(".py") else name
             names.add(stem)
-    for scripts in ("bench", os.path.join("tools", "corpus")):
+    for scripts in ("bench", os.path.join("tools", "corpus"), os.path.join("tools", "peer")):
         names.update(f[:-3] for f in os.listdir(os.path.join(ROOT, scripts))
                      if f.endswith(".py"))
     for folder, _, files in os.walk(os.path.join(ROOT, "test")):

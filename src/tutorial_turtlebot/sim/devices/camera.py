@@ -14,7 +14,7 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..files.robot_plugin_types import CameraSpec
+from ..files.plugins.robot_plugin_types import CameraSpec
 
 try:  # Debian/Ubuntu python3-pil, PyPI Pillow
     from PIL import Image as _PilImage
@@ -33,8 +33,9 @@ Vector = Sequence[float]
 @dataclass(frozen=True)
 class CameraIntrinsics:
     """Pinhole model of an image ``width`` x ``height`` px, as gazebo_ros_camera_utils fills
-    sensor_msgs/CameraInfo: square pixels, principal point ((w + 1) / 2, (h + 1) / 2), no
-    distortion (plumb_bob, 5 zeros), R identity, P[3] = -f * baseline."""
+    sensor_msgs/CameraInfo: square pixels, principal point ((w + 1) / 2, (h + 1) / 2), plumb_bob
+    distortion ``distortion`` (k1, k2, t1, t2, k3: 5 zeros unless a world camera's plugin
+    gives them), R identity, P[3] = -f * baseline."""
 
     width: int
     height: int
@@ -42,6 +43,7 @@ class CameraIntrinsics:
     cx: float             # px
     cy: float             # px
     baseline: float = 0.0  # m: gazebo_ros hackBaseline
+    distortion: Tuple[float, ...] = (0.0,) * 5
 
     distortion_model = "plumb_bob"
 
@@ -60,8 +62,8 @@ class CameraIntrinsics:
         return self.f
 
     def D(self) -> List[float]:
-        """Distortion (k1, k2, t1, t2, k3): all zero."""
-        return [0.0] * 5
+        """Distortion (k1, k2, t1, t2, k3)."""
+        return list(self.distortion)
 
     def K(self) -> List[float]:
         """3x3 camera matrix, row-major (9 values)."""

@@ -12,7 +12,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...errors import UserError
-from ..files.robot_plugin_types import LaserConfig
+from ..files.plugins.robot_plugin_types import LaserConfig
 
 
 LASER_MODELS = {

@@ -15,6 +15,7 @@ from typing import Dict, List, Optional, Sequence
 import numpy as np
 
 from . import collision_filters
+from .bodies import Body
 from .bullet import pybullet
 from .client import Client
 
@@ -55,6 +56,7 @@ class BodyPool:
             if not np.all(np.isfinite(pos + orn + lin + ang)):
                 return False
         for body in bodies:
+            Body(client, body).restore_joints()   # as built: set_joint_properties' undone
             client.resetBasePositionAndOrientation(
                 body, (PARK_SPACING * body, 0.0, -PARK_DEPTH), (0, 0, 0, 1))
             client.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0))
@@ -78,6 +80,7 @@ class BodyPool:
         for body in bodies:
             self.client.removeBody(body)
             collision_filters.forget_body(self.client, body)
+            self.client.built_joints.pop(body, None)
         self.forget(bodies)
         self.parked_bodies -= len(bodies)
 

@@ -16,14 +16,19 @@ afresh):
 - ``egl_plugin``, ``textured``: rendering's EGL plugin id (None: not loaded) and whether a
   textured visual was built (note_textures);
 - ``texture_plan``: texture_budget's halvings of the client's texture images (None: none yet);
-- ``view_noted``: view_culling's bodies, body id -> what the builder said of it.
+- ``view_noted``: view_culling's bodies, body id -> what the builder said of it;
+- ``joints_set``: bodies' joints changed since they were built (set_joint_properties),
+  (body id, joint index) -> what was set (bodies.Body);
+- ``built_joints``: body id -> a bodies.BuiltJoint per joint of a body built from SDF
+  (movable_bodies): its name, child link and properties as built, which pybullet's
+  getJointInfo does not give for a createMultiBody's joints.
 
 ``int(client)`` (``__index__``) is the id, for a test or tool that calls pybullet itself.
 """
 import functools
 import types
 from collections import OrderedDict
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, Tuple
 
 from .bullet import pybullet
 
@@ -39,6 +44,8 @@ class Client:
         self.textured = False                          # rendering.note_textures
         self.texture_plan: Any = None                  # texture_budget
         self.view_noted: Dict[int, Any] = {}           # view_culling: body id -> noted
+        self.joints_set: Dict[Tuple[int, int], Dict[str, Any]] = {}   # bodies: what was set
+        self.built_joints: Dict[int, Tuple[Any, ...]] = {}   # bodies.BuiltJoint per joint
 
     @classmethod
     def connect(cls, method: Optional[int] = None, **options) -> Optional["Client"]:

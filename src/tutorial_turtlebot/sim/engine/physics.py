@@ -97,6 +97,10 @@ class WorldPhysics:
         (after bodies were put back by hand, as restore_state does by itself)."""
         collision_filters.renew_contacts(self.client)
 
+    def set_gravity(self, gravity) -> None:
+        """Gravity (m/s^2, world frame)."""
+        self.client.setGravity(*gravity)
+
     def set_parameters(self, time_step: float, gravity, solver: dict) -> None:
         """The step (s), gravity (m/s^2, world frame) and Bullet's solver parameters
         (physics_properties.bullet_parameters: pybullet's setPhysicsEngineParameter names)."""

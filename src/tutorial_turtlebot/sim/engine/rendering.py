@@ -27,7 +27,7 @@ from . import texture_budget
 from .bullet import pybullet, quiet_output
 from .client import Client
 from . import view_culling
-from ..files.robot_plugin_types import CameraSpec
+from ..files.plugins.robot_plugin_types import CameraSpec
 
 # pybullet's OpenGL renderers read images from a buffer of this size (EGL: 1024 x 768).
 OPENGL_BUFFER = (1024, 768)

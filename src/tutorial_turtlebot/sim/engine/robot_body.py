@@ -18,11 +18,11 @@ from . import collision_filters
 from .bodies import Body
 from .bullet import pybullet
 from ..kinematics import Pose
-from ..files.urdf_file import RobotDescription
-from ..files.urdf_meshes import bullet_urdf_text
+from ..files.urdf.urdf_file import RobotDescription
+from ..files.urdf.urdf_meshes import bullet_urdf_text
 from .physics import ROBOT_GROUPS, WorldPhysics
 from .urdf_loader import load_urdf
-from .world_bullet import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP
+from .collision_groups import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP
 
 # Tyre on floor (pybullet multiplies the two surfaces' values; the floor's is 1): enough grip
 # for the 1 m/s^2 ramp with margin, little enough that a robot pushing a wall spins its wheels
@@ -42,9 +42,13 @@ class RobotBody:
     """One robot URDF in a WorldPhysics: its pose, velocity, wheels and frames."""
 
     def __init__(self, physics: WorldPhysics, description: RobotDescription, spawn_pose: Pose,
-                 wheel_joints: Sequence[str] = (), wheel_torque: float = 0.0):
+                 wheel_joints: Sequence[str] = (), wheel_torque: float = 0.0,
+                 wheel_sides: Optional[Sequence[int]] = None, free_wheels: Sequence[str] = ()):
         """``spawn_pose``: the root link's world pose; ``wheel_joints``: (left, right) joint
-        names driven by velocity with at most ``wheel_torque`` N*m, or () for none."""
+        names driven by velocity with at most ``wheel_torque`` N*m, or () for none; more wheels
+        (a skid steer's four, a tricycle's one) with ``wheel_sides``, each wheel's side: 0 turns
+        at the left speed, 1 at the right (default: (0, 1)); ``free_wheels``: wheel joints
+        with the tyres' grip and no motor (a tricycle's encoder wheels)."""
         self.physics = physics
         self.client = physics.client      # engine.client.Client
         self.description = description
@@ -60,6 +64,10 @@ class RobotBody:
         self._com_in_footprint = self.body.com_in_root()
         self._footprint_in_com = pybullet.invertTransform(*self._com_in_footprint)
         self.wheels = self._wheel_indices(wheel_joints)
+        self._free = self._wheel_indices(free_wheels)
+        self._gripping = self.wheels + self._free
+        self._free_wheels()
+        self._sides = tuple(wheel_sides) if wheel_sides is not None else (0, 1)
         self._held: Optional[Tuple[float, float]] = None  # wheel angles the brake holds
         self._anchored = False
         self._frames: Dict[str, np.ndarray] = {}
@@ -102,10 +110,18 @@ class RobotBody:
         client = self.client
         by_name = {client.getJointInfo(self.robot, j)[1].decode(): j
                    for j in range(client.getNumJoints(self.robot))}
+        self._joints: Dict[str, int] = by_name
         wheels = tuple(by_name[name] for name in names)
         for j in wheels:
             client.changeDynamics(self.robot, j, lateralFriction=WHEEL_FRICTION)
         return wheels
+
+    def _free_wheels(self) -> None:
+        """The free wheels turn freely: pybullet's default motor (velocity 0) off."""
+        if self._free:
+            self.client.setJointMotorControlArray(self.robot, self._free,
+                                                  pybullet.VELOCITY_CONTROL,
+                                                  forces=(0.0,) * len(self._free))
 
     # --- commands ------------------------------------------------------------------------------
 
@@ -115,9 +131,11 @@ class RobotBody:
         if self.wheels:
             self._held = None
             self._anchor_wheels(False)
+            speeds = (left, right)
             self.client.setJointMotorControlArray(
                 self.robot, self.wheels, pybullet.VELOCITY_CONTROL,
-                targetVelocities=(left, right), forces=(self.wheel_torque,) * 2)
+                targetVelocities=tuple(speeds[side] for side in self._sides),
+                forces=(self.wheel_torque,) * len(self.wheels))
 
     def brake(self) -> None:
         """Keep an idle robot where it is, as Gazebo's diff drive (wheel velocity 0 with the
@@ -145,8 +163,10 @@ class RobotBody:
             self._held = angles
             self.client.setJointMotorControlArray(
                 self.robot, self.wheels, pybullet.POSITION_CONTROL, targetPositions=angles,
-                targetVelocities=(0.0, 0.0), forces=(self.wheel_torque,) * 2,
-                positionGains=(BRAKE_POSITION_GAIN,) * 2, velocityGains=(1.0, 1.0))
+                targetVelocities=(0.0,) * len(angles),
+                forces=(self.wheel_torque,) * len(angles),
+                positionGains=(BRAKE_POSITION_GAIN,) * len(angles),
+                velocityGains=(1.0,) * len(angles))
         self._anchor_wheels(True)
 
     def _anchor_wheels(self, anchored: bool) -> None:
@@ -188,8 +208,9 @@ class RobotBody:
         old = self.body
         self.body = Body(self.client, self._load())
         old.remove()
-        for j in self.wheels:
+        for j in self._gripping:
             self.client.changeDynamics(self.robot, j, lateralFriction=WHEEL_FRICTION)
+        self._free_wheels()
         self._held, self._anchored = None, False
         self.reset_robot()
 
@@ -211,10 +232,49 @@ class RobotBody:
         """World-frame (linear m/s of the centre of mass, angular rad/s) of the chassis."""
         return self.body.twist()
 
-    def wheel_states(self) -> Tuple[Tuple[float, float], Tuple[float, float]]:
-        """((left, right) joint angles in rad, (left, right) joint velocities in rad/s)."""
-        (pl, vl, _, _), (pr, vr, _, _) = self.client.getJointStates(self.robot, self.wheels)
-        return (pl, pr), (vl, vr)
+    def wheel_states(self) -> Tuple[Tuple[float, ...], Tuple[float, ...]]:
+        """((left, right) joint angles in rad, (left, right) joint velocities in rad/s); of
+        every wheel, in ``wheel_joints`` order, on a robot of more wheels."""
+        states = self.client.getJointStates(self.robot, self.wheels)
+        return tuple(s[0] for s in states), tuple(s[1] for s in states)
+
+    def joint_index(self, name: str) -> int:
+        """The pybullet index of the robot's joint ``name`` (a URDF joint the reader checked)."""
+        return self._joints[name]
+
+    def joint_state(self, name: str) -> Tuple[float, float]:
+        """(angle rad or m, rate rad/s or m/s) of the robot's joint ``name``."""
+        return self.body.joint_state(self.joint_index(name))
+
+    def steer(self, name: str, angle: float, torque: float) -> None:
+        """Drive joint ``name`` to ``angle`` (rad) with at most ``torque`` N*m (a tricycle's
+        steering joint: Gazebo sets its position)."""
+        self.client.setJointMotorControl2(self.robot, self.joint_index(name),
+                                          pybullet.POSITION_CONTROL, targetPosition=angle,
+                                          force=torque)
+
+    def set_joint_speed(self, name: str, rate: float, torque: float) -> None:
+        """Drive joint ``name`` at ``rate`` (rad/s) with at most ``torque`` N*m."""
+        self.body.set_joint_motor(self.joint_index(name), rate, torque)
+
+    def set_velocity(self, linear, angular) -> None:
+        """Set the chassis' world-frame velocity (m/s, rad/s): a planar move's base."""
+        self.body.set_twist((tuple(linear), tuple(angular)))
+
+    def push(self, force, torque) -> None:
+        """Apply a world-frame ``force`` (N) at the chassis' centre of mass and a world-frame
+        ``torque`` (N*m) to it during the next step (pybullet clears them after it)."""
+        position, _ = self.body.pose()
+        self.client.applyExternalForce(self.robot, -1, tuple(force), tuple(position),
+                                       pybullet.WORLD_FRAME)
+        self.client.applyExternalTorque(self.robot, -1, tuple(torque), pybullet.WORLD_FRAME)
+
+    def mass_and_yaw_inertia(self) -> Tuple[float, float]:
+        """(kg of every link, kg m^2 of the chassis about its z axis)."""
+        client = self.client
+        mass = sum(client.getDynamicsInfo(self.robot, link)[0]
+                   for link in range(-1, client.getNumJoints(self.robot)))
+        return mass, client.getDynamicsInfo(self.robot, -1)[2][2]
 
     def frame_in_footprint(self, frame: str) -> np.ndarray:
         """4x4 pose of a URDF frame (base_scan, imu_link, camera...) in the root link."""

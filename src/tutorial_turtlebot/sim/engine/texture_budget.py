@@ -17,7 +17,7 @@ import os
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 
-from ..files.texture_images import MIN_HALVED_SIDE, halved_size
+from ..files.meshes.texture_images import MIN_HALVED_SIDE, halved_size
 from .client import Client
 
 # px: 64 M px of images (about 256 MB as decoded RGBA, a third more with their mipmaps).

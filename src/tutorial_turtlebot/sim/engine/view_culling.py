@@ -33,7 +33,7 @@ from typing import Hashable, Iterable, Iterator, List, Optional, Sequence, Tuple
 import numpy as np
 
 from ...errors import UserError
-from ..files.mesh_file import load_mesh
+from ..files.meshes.mesh_file import load_mesh
 from ..files.world_types import Shape
 from .bullet import pybullet
 from .client import Client

@@ -21,9 +21,13 @@ MAX_ANGULAR_SPEED = 1e3     # rad/s: a component of an angular velocity
 MAX_MASS = 1e6              # kg
 MAX_INERTIA = 1e6           # kg m^2: a moment (or product) of inertia
 MAX_SIZE = 1e4              # m: a box side, a radius, a length, a plane's side, a height
+MIN_BOX_SIDE = 1e-4         # m: an SDF box side of 0 is built so (ODE takes 0; Gazebo's Bullet,
+# DART and Simbody boxes take 1e-4 m too)
 MAX_SCALE = 1e4             # a scale factor: a mesh's (its magnitude; negative mirrors), a scan's
 # resolution
 MAX_FRICTION = 1e6          # a friction coefficient
+NO_SLIP_FRICTION = MAX_FRICTION   # an SDF <mu> below 0: Gazebo takes FLT_MAX, a friction that never
+# gives; Bullet caps a contact's friction (the product of its two bodies') at 10 in any case
 MAX_FORCE = 1e6             # N (and N m for a torque, N or N m for a joint effort)
 MAX_JOINT_POSITION = 1e6    # rad or m: a joint position (set_model_configuration)
 MAX_GRAVITY = 1e3           # m/s^2: a component of gravity
@@ -32,6 +36,7 @@ MAX_CONTACTS = 1000         # max_contacts
 MAX_ODE_VALUE = 1e6         # the other ODE fields (cfm, rms error tol, correcting vel, layer)
 MAX_DURATION_NS = 10 ** 18  # ns: a wrench's or effort's start or duration (~31 years)
 # A robot's <gazebo> plugins and sensors (robot_plugins)
+MIN_TIME_STEP, MAX_TIME_STEP = 0.0001, 0.01   # s: a physics step (max_step_size)
 MAX_RATE = 1e6              # Hz: an update rate (beyond the physics' own: every physics step)
 MIN_RATE = 1e-6             # Hz: the slowest update rate but 0 (0: every physics step)
 MAX_RANGE = 1e6             # m: a sensor's range, clip plane or cut-off

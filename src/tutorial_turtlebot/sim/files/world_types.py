@@ -9,7 +9,8 @@ from dataclasses import dataclass
 from typing import Optional, Tuple
 
 from ..kinematics import ZERO_XYZ_RPY, XyzRpy
-from .world_lights import Light
+from .plugins.sensor_types import WorldSensor
+from .sdf.world_lights import Light
 
 Rgba = Tuple[float, float, float, float]
 KINDS = ("box", "cylinder", "sphere", "plane", "polyline", "mesh")
@@ -64,6 +65,36 @@ class Link:
     inertial: Inertial = Inertial()
 
 
+# SDF's joint types (sdformat 9): those simulated, and those approximated (model_tree).
+JOINT_KINDS = ("revolute", "continuous", "prismatic", "fixed", "ball", "universal",
+               "revolute2", "screw", "gearbox")
+WORLD_LINK = "world"    # a joint's <parent> that anchors its model to the world
+UNLIMITED = 1e16        # SDF's default <lower>/<upper> magnitude: no limit
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A ``<joint>`` of a model that is not static, placed in the world as the model was loaded
+    (every joint at position 0). Links are scoped ("model::link"); ``parent`` is WORLD_LINK for
+    a joint that anchors the model. Axes are unit vectors in the world frame; limits in rad
+    (angular) or m (prismatic), -+UNLIMITED when the file sets none; ``effort`` N m or N and
+    ``velocity`` rad/s or m/s, -1 = none (SDF's default)."""
+
+    name: str                # its own name, as get_model_properties lists it
+    kind: str                # one of JOINT_KINDS
+    parent: str
+    child: str
+    pose: XyzRpy             # world pose of the joint frame (SDF: its <pose> in the child link)
+    axis: Tuple[float, float, float] = (0.0, 0.0, 1.0)
+    axis2: Tuple[float, float, float] = (0.0, 1.0, 0.0)   # universal, revolute2: the second
+    lower: float = -UNLIMITED
+    upper: float = UNLIMITED
+    effort: float = -1.0
+    velocity: float = -1.0
+    damping: float = 0.0     # N m s/rad or N s/m, <axis><dynamics><damping>
+    friction: float = 0.0    # N m or N, <axis><dynamics><friction>: what holds it still
+
+
 @dataclass(frozen=True)
 class Model:
     """A top-level model of a world file, as /gazebo/model_states lists it."""
@@ -74,6 +105,8 @@ class Model:
     links: Tuple[Link, ...]
     joints: Tuple[str, ...] = ()
     joint_types: Tuple[str, ...] = ()    # each joint's <joint type> (revolute, fixed ...)
+    joint_specs: Tuple[Joint, ...] = ()  # the joints simulated (a movable model's; a loop's
+    #                                      closing joint left out: model_tree)
 
 
 @dataclass(frozen=True)
@@ -130,6 +163,11 @@ class World:
     lights: Tuple[Light, ...] = ()        # the world's lights in file order (world_lights)
     actors: Tuple[Actor, ...] = ()        # the world's <actor>s in file order (their shapes and
     #                                       Model are in ``shapes`` and ``model_specs`` too)
+    sensors: Tuple[WorldSensor, ...] = ()  # its models' links' sensors with a gazebo_ros plugin
+    #                                       that runs here, in file order (world_sensor_reading)
+    gravity: Tuple[float, float, float] = (0.0, 0.0, -9.8)   # m/s^2, world frame: <gravity>
+    model_plugins: Tuple[object, ...] = ()   # its models' model plugins that run here, in file
+    #                                          order (plugins.model_table), each naming its model
 
     def model(self, name: str) -> Model:
         """The top-level model called ``name``; KeyError if there is none."""

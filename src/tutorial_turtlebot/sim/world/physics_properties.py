@@ -12,7 +12,7 @@ from typing import Tuple
 
 from ..files import limits
 
-MIN_TIME_STEP, MAX_TIME_STEP = 0.0001, 0.01       # s, as SimConfig allows
+MIN_TIME_STEP, MAX_TIME_STEP = limits.MIN_TIME_STEP, limits.MAX_TIME_STEP   # s, as SimConfig
 # Each ODE field's physical range (low, high, unit); a value outside is refused, never passed on
 # (pybullet takes the solver's iterations as a C int: 4294967295 would not even convert).
 ODE_RANGES = {

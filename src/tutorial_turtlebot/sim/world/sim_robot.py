@@ -1,9 +1,11 @@
 """One robot in the simulation, made from what its URDF's ``<gazebo>`` blocks declare.
 
 A ``SimRobot`` is what Gazebo's plugins make of one spawned URDF: the diff drive (command ramp,
-odometry, joint states), the laser, the IMU and the camera, each at its own rate, reading one
-``RobotBody`` in the shared ``WorldPhysics``. Knows nothing of ROS. Frames are the URDF's link
-names, unprefixed (the ROS side adds the namespace prefix). Units: m, s, rad.
+odometry, joint states) or another drive (robot_drives: skid steer, planar move, tricycle,
+force-based move), its lasers, the IMU and its cameras (any number of each, every one at its
+own rate, pose and noise), reading one ``RobotBody`` in the shared ``WorldPhysics``. Knows
+nothing of ROS. Frames are the URDF's link names, unprefixed (the ROS side adds the namespace
+prefix). Units: m, s, rad.
 """
 import math
 from dataclasses import dataclass, replace
@@ -22,10 +24,12 @@ from ..devices.lidar import (LaserConfig, as_real_driver, laser_config, ranges_f
 from ..kinematics import Pose
 from ..engine.physics import GRAVITY, WorldPhysics
 from ..engine.robot_body import RobotBody
-from ..files.robot_plugin_types import CameraSensor, LaserSensor, RobotPlugins
+from ..files.plugins.robot_plugin_types import (CameraSensor, CameraSpec, DiffDrivePlugin,
+                                                LaserSensor, RobotPlugins)
+from .robot_drives import make_drive
 from .schedule import NS_PER_S, RateSchedule
-from ..files.urdf_file import RobotDescription
-from ..files.urdf_meshes import texture_warnings
+from ..files.urdf.urdf_file import RobotDescription
+from ..files.urdf.urdf_meshes import texture_warnings
 from ..devices.wheel_odometry import WheelOdometry
 from ...errors import UserError
 from ...ros_names import is_legal_namespace
@@ -37,6 +41,12 @@ IMU_ACCEL_TIME_CONSTANT = 0.02
 # A camera link looks along its +x (Gazebo); the image's optical frame looks along z with x
 # right and y down. Columns: the optical axes in the link frame.
 LINK_TO_OPTICAL = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
+
+
+def output_name(kind: str, index: int) -> str:
+    """The name SimRobot.due gives the output of its ``index``-th sensor of ``kind`` ("scan",
+    "camera"): the first's is ``kind``, the others' ``kind:index`` ("scan:1")."""
+    return kind if index == 0 else "%s:%d" % (kind, index)
 
 
 def normalize_namespace(namespace: str) -> str:
@@ -59,8 +69,9 @@ class RobotOptions:
 
     lidar_model: Optional[str] = None    # "gazebo" = as declared; "lds01" = the real driver's
     lidar_samples: Optional[int] = None  # rays per scan over the declared sweep
+    # (both of the first laser only: the TurtleBot3's LDS; the others' are as declared)
     odom_source: Optional[str] = None    # "world" or "encoders"
-    camera: bool = True                  # False: the declared camera is not simulated
+    camera: bool = True                  # False: none of the declared cameras is simulated
     # (max linear m/s, max angular rad/s) commands are held to, as the real firmware does;
     # None: only SAFE_LINEAR / SAFE_ANGULAR (Gazebo clamps nothing)
     limits: Optional[Tuple[float, float]] = None
@@ -108,6 +119,34 @@ class ImuState:
     linear_acceleration: Tuple[float, float, float]
 
 
+@dataclass
+class RobotLaser:
+    """One of a robot's lasers: its sensor, the LaserConfig it publishes, its rays (unit
+    vectors in the sensor frame), its pose in the root link (4x4), its noise generator (None
+    for the first laser, whose noise draws on the robot's own, shared with the IMU) and the
+    name of its output (output_name)."""
+
+    sensor: LaserSensor
+    config: LaserConfig
+    rays: np.ndarray
+    pose: np.ndarray
+    rng: Optional[np.random.Generator]
+    output: str
+
+
+@dataclass
+class RobotCamera:
+    """One of a robot's cameras: its sensor, what it renders (spec), CameraInfo's numbers, its
+    renderer, its pose in the root link (4x4, link axes) and the name of its output."""
+
+    sensor: CameraSensor
+    spec: CameraSpec
+    intrinsics: CameraIntrinsics
+    renderer: CameraRenderer
+    pose: np.ndarray
+    output: str
+
+
 def _sensor_pose(body: RobotBody, link: str, pose6) -> np.ndarray:
     """4x4 pose in the root link of a sensor at ``pose6`` (x y z roll pitch yaw) in ``link``."""
     local = body.frame_in_footprint(link)
@@ -129,22 +168,31 @@ class SimRobot:
         self.description = description
         self.options = options
         plugins: RobotPlugins = description.plugins
-        self.warnings: List[str] = list(plugins.warnings)
+        self.warnings: List[str] = list(description.warnings) + list(plugins.warnings)
         self.drive_plugin = plugins.drive
         self.imu_plugin = plugins.imu
+        # every laser and camera is in ``lasers`` and ``cameras`` (made in _set_up); the
+        # first of each is also laser_sensor, laser, camera_sensor, camera_spec, camera, ...
         self.laser_sensor: Optional[LaserSensor] = plugins.laser
         self.laser: Optional[LaserConfig] = self._laser_config(plugins.laser)
-        self.camera_sensor: Optional[CameraSensor] = plugins.camera if options.camera else None
+        self.camera_sensors: Tuple[CameraSensor, ...] = plugins.cameras if options.camera else ()
+        self.camera_sensor: Optional[CameraSensor] = (self.camera_sensors[0]
+                                                      if self.camera_sensors else None)
         self.camera_spec = self.camera_sensor.spec if self.camera_sensor else None
         self.camera_intrinsics: Optional[CameraIntrinsics] = None   # CameraInfo's numbers
+        for sensor in self.camera_sensors:
+            validate_spec(sensor.spec)
         if self.camera_spec is not None:
-            validate_spec(self.camera_spec)
             self.camera_intrinsics = CameraIntrinsics.from_spec(self.camera_spec)
-        drive = self.drive_plugin
+        # the diff drive is run here; another drive (robot_drives) is ``motion``
+        self.motion = make_drive(plugins.drive)
+        drive = self.diff_plugin = (plugins.drive if isinstance(plugins.drive, DiffDrivePlugin)
+                                    else None)
         self.odom_source = (options.odom_source or drive.odometry_source) if drive else "world"
         self.body = RobotBody(physics, description, spawn_pose,
-                              (drive.left_joint, drive.right_joint) if drive else (),
-                              drive.wheel_torque if drive else 0.0)
+                              *(self.motion.wheels if self.motion else (
+                                  (drive.left_joint, drive.right_joint) if drive else (),
+                                  drive.wheel_torque if drive else 0.0)))
         self.warnings += texture_warnings(description)   # textures drawn as plain colours
         try:   # a robot that cannot be completed leaves no body behind
             self._set_up(physics, now_ns, seed)
@@ -153,11 +201,20 @@ class SimRobot:
             raise
 
     def _set_up(self, physics: WorldPhysics, now_ns: int, seed: int) -> None:
-        """Everything of the robot after its body: camera, drive, schedules, rays, state."""
-        drive = self.drive_plugin
+        """Everything of the robot after its body: cameras, drive, schedules, rays, state."""
+        drive = self.diff_plugin
         self.camera = (CameraRenderer(physics.client, self.camera_spec,
                                       use_egl=physics.egl or physics.gui)
                        if self.camera_spec else None)
+        self.cameras: List[RobotCamera] = []
+        for index, sensor in enumerate(self.camera_sensors):
+            renderer = self.camera if index == 0 else CameraRenderer(
+                physics.client, sensor.spec, use_egl=physics.egl or physics.gui)
+            intrinsics = (self.camera_intrinsics if index == 0
+                          else CameraIntrinsics.from_spec(sensor.spec))
+            self.cameras.append(RobotCamera(sensor, sensor.spec, intrinsics, renderer,
+                                            _sensor_pose(self.body, sensor.link, sensor.pose),
+                                            output_name("camera", index)))
         step_rate = 1.0 / physics.time_step
         separation = drive.wheel_separation if drive else 1.0
         radius = drive.wheel_radius if drive else 1.0
@@ -167,22 +224,38 @@ class SimRobot:
         self.control = RateSchedule(min(drive.update_rate or step_rate, step_rate)
                                     if drive else 1.0)
         self.schedules: Dict[str, RateSchedule] = {}
+        if self.motion:
+            self.control = RateSchedule(self.motion.control_rate(step_rate))
+            if self.motion.odom_rate(step_rate) > 0:
+                self.schedules["odom"] = RateSchedule(self.motion.odom_rate(step_rate))
+            if self.motion.joint_names:     # a tricycle's publishWheelJointState
+                self.schedules["joint_states"] = RateSchedule(self.control.rate_hz)
         if drive and drive.publish_tf:     # publishTf false: no odometry at all (Gazebo)
             self.schedules["odom"] = RateSchedule(self.control.rate_hz)
         if drive and drive.publish_wheel_joint_state:
             self.schedules["joint_states"] = RateSchedule(self.control.rate_hz)
+        self.lasers: List[RobotLaser] = []
         if self.laser:
             self.schedules["scan"] = RateSchedule(min(self.laser.rate or step_rate, step_rate))
             self._rays = ray_directions(self.laser)
             self._laser_pose = _sensor_pose(self.body, self.laser_sensor.link,
                                             self.laser_sensor.pose)
+            self.lasers.append(RobotLaser(self.laser_sensor, self.laser, self._rays,
+                                          self._laser_pose, None, "scan"))
+        for index, sensor in enumerate(self.description.plugins.lasers[1:], 1):
+            laser = RobotLaser(sensor, sensor.laser, ray_directions(sensor.laser),
+                               _sensor_pose(self.body, sensor.link, sensor.pose),
+                               np.random.default_rng([seed, index]), output_name("scan", index))
+            self.schedules[laser.output] = RateSchedule(min(laser.config.rate or step_rate,
+                                                            step_rate))
+            self.lasers.append(laser)
         if self.imu_plugin:
             self.schedules["imu"] = RateSchedule(
                 min(self.imu_plugin.update_rate or step_rate, step_rate))
         if self.camera:
-            self.schedules["camera"] = RateSchedule(min(self.camera_spec.rate, step_rate))
-            self._camera_pose = _sensor_pose(self.body, self.camera_sensor.link,
-                                             self.camera_sensor.pose)
+            self._camera_pose = self.cameras[0].pose
+        for camera in self.cameras:
+            self.schedules[camera.output] = RateSchedule(min(camera.spec.rate, step_rate))
         self._rng = np.random.default_rng(seed)
         self.reset_state(now_ns)
 
@@ -200,6 +273,8 @@ class SimRobot:
         """Controller, encoders, IMU filter and every schedule start over at ``now_ns``."""
         self.time_ns = now_ns
         self.drive.reset()
+        if self.motion:
+            self.motion.reset()
         self.encoders.reset()
         self._last_control_ns = None
         self._imu_velocity = ((0.0, 0.0, 0.0), now_ns)
@@ -213,11 +288,17 @@ class SimRobot:
 
     # --- stepping ----------------------------------------------------------------------------
 
-    def command(self, linear: float, angular: float) -> List[str]:
-        """A new cmd_vel. NaN/inf raise ValueError (the command is ignored); values beyond the
+    def command(self, linear: float, angular: float, lateral: float = 0.0) -> List[str]:
+        """A new cmd_vel (linear.x m/s, angular.z rad/s; linear.y m/s, which only a planar
+        move reads). NaN/inf raise ValueError (the command is ignored); values beyond the
         limits are clamped and described in the returned list."""
         limits = self.options.limits or (SAFE_LINEAR, SAFE_ANGULAR)
         linear, angular, problems = sanitize_command(linear, angular, *limits)
+        if self.motion:
+            lateral, _, more = sanitize_command(lateral, 0.0, *limits)
+            problems += [p.replace("linear.x", "linear.y") for p in more]
+            self.motion.set_command(linear, lateral, angular, self.time_ns / NS_PER_S)
+            return problems
         self.drive.set_command(linear, angular)
         return problems
 
@@ -225,6 +306,9 @@ class SimRobot:
         """The diff drive's control tick, when due: the ramp toward the command; stopped, the
         brake (RobotBody.brake: an idle robot stands still)."""
         if self.drive_plugin and now_ns >= self.control.next_ns and self.control.due(now_ns):
+            if self.motion:
+                self.motion.tick(self.body, now_ns / NS_PER_S, 1.0 / self.control.rate_hz)
+                return
             left, right = self.drive.update(1.0 / self.control.rate_hz)
             if self.drive.stopped:
                 self.body.brake()
@@ -236,7 +320,8 @@ class SimRobot:
         return self.control.next_ns if self.drive_plugin else math.inf
 
     def due(self, now_ns: int) -> List[str]:
-        """The outputs due at ``now_ns`` (odom, joint_states, scan, imu, camera) after a step;
+        """The outputs due at ``now_ns`` (odom, joint_states, scan, imu, camera; a further
+        laser's or camera's named by output_name: "scan:1") after a step;
         updates ``next_output_ns``. Samples what must be sampled at each tick."""
         self.time_ns = now_ns
         if now_ns < self.next_output_ns:
@@ -248,13 +333,18 @@ class SimRobot:
             self._filter_imu()
         if self.odom_source == "encoders" and ("odom" in due or "joint_states" in due):
             self._update_encoders()
+        if self.motion and "odom" in due:
+            self.motion.odom_tick(self.body, now_ns / NS_PER_S)
         return due
 
     # --- sensors ---------------------------------------------------------------------------------
 
     def odom(self) -> OdomState:
         """Odometry as ``odom_source`` says: ``world`` is the ground truth pose (starting at the
-        spawn pose, as Gazebo); ``encoders`` is integrated from the wheels (starting at 0)."""
+        spawn pose, as Gazebo); ``encoders`` is integrated from the wheels (starting at 0).
+        Another drive's (``motion``) is as its plugin reports it."""
+        if self.motion:
+            return OdomState(*self.motion.odom(self.body))
         if self.odom_source == "encoders":
             e = self.encoders
             return OdomState((e.x, e.y, 0.0), kinematics.quat_from_yaw(e.yaw),
@@ -269,21 +359,32 @@ class SimRobot:
         return self.body.footprint_pose()
 
     def joint_states(self):
-        """((left, right) wheel angles rad, (left, right) wheel velocities rad/s)."""
+        """((left, right) wheel angles rad, (left, right) wheel velocities rad/s); another
+        drive's: of its ``joint_names``."""
+        if self.motion:
+            states = [self.body.joint_state(name) for name in self.motion.joint_names]
+            return tuple(s[0] for s in states), tuple(s[1] for s in states)
         return self.body.wheel_states()
 
     def reseed(self, seed: int) -> None:
-        """Draw the sensors' noise (laser, IMU) anew from ``seed``: the same seed, the same
+        """Draw the sensors' noise (lasers, IMU) anew from ``seed``: the same seed, the same
         noise from here on."""
         self._rng = np.random.default_rng(seed)
+        for index, laser in enumerate(self.lasers[1:], 1):
+            laser.rng = np.random.default_rng([seed, index])
 
-    def scan(self) -> np.ndarray:
-        """The ranges of the laser as its LaserConfig publishes them (float32); the rays see
-        the world and every other robot, never this one."""
-        origin, rotation = self.body.pose_in_world(self._laser_pose)
-        distances = self.body.physics.ray_distances(origin, self._rays @ rotation.T,
-                                                    self.laser.range_max, self.body.ray_mask)
-        return ranges_from_distances(self.laser, distances, self._rng)
+    def scan(self, index: int = 0) -> np.ndarray:
+        """The ranges of laser ``index`` (of ``lasers``) as its LaserConfig publishes them
+        (float32); the rays see the world and every other robot, never this one."""
+        if index == 0:
+            config, pose, rays, rng = self.laser, self._laser_pose, self._rays, self._rng
+        else:
+            laser = self.lasers[index]
+            config, pose, rays, rng = laser.config, laser.pose, laser.rays, laser.rng
+        origin, rotation = self.body.pose_in_world(pose)
+        distances = self.body.physics.ray_distances(origin, rays @ rotation.T,
+                                                    config.range_max, self.body.ray_mask)
+        return ranges_from_distances(config, distances, rng)
 
     def imu(self) -> ImuState:
         """What the IMU reads now (orientation absolute in the world, yaw 0 facing +x)."""
@@ -291,15 +392,18 @@ class SimRobot:
             self._sample_imu()
         return self._imu_state
 
-    def camera_pose(self) -> Tuple[np.ndarray, np.ndarray]:
-        """World (position, 3x3 rotation) of what the camera renders from: its sensor's pose
-        in its link, turned from the link's x forward to the optical frame's z forward."""
-        position, rotation = self.body.pose_in_world(self._camera_pose)
+    def camera_pose(self, index: int = 0) -> Tuple[np.ndarray, np.ndarray]:
+        """World (position, 3x3 rotation) of what camera ``index`` (of ``cameras``) renders
+        from: its sensor's pose in its link, turned from the link's x forward to the optical
+        frame's z forward."""
+        pose = self._camera_pose if index == 0 else self.cameras[index].pose
+        position, rotation = self.body.pose_in_world(pose)
         return position, rotation @ LINK_TO_OPTICAL
 
-    def camera_image(self, depth: bool = False):
-        """(rgb uint8 HxWx3, depth float32 HxW metres or None) seen by the camera now."""
-        return self.camera.render(*self.camera_pose(), depth=depth)
+    def camera_image(self, depth: bool = False, index: int = 0):
+        """(rgb uint8 HxWx3, depth float32 HxW metres or None) seen by camera ``index`` now."""
+        renderer = self.camera if index == 0 else self.cameras[index].renderer
+        return renderer.render(*self.camera_pose(index), depth=depth)
 
     def _filter_imu(self) -> None:
         """At an IMU tick: low-pass the acceleration (world frame) from the change of the

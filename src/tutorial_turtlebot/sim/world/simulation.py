@@ -20,13 +20,16 @@ from ...robot_models import model_limits, turtlebot3_model_of
 from .schedule import RateSchedule, seconds_to_ns, NS_PER_S
 from .sim_robot import ImuState, OdomState, RobotOptions, SimRobot, normalize_namespace
 from .spawn_check import landed_pose, model_of_body, overlap_warning
-from ..files.urdf_file import RobotDescription, read_urdf, urdf_path
+from ..files.urdf.urdf_file import RobotDescription, read_urdf, urdf_path
 from .actors import actor_motions
+from .model_plugins import MODEL_PLUGINS, ModelPlugins
+from .world_sensors import WORLD_SENSORS, WorldSensors
+from ..files.plugins.robot_plugin_types import CameraSensor
 from .world_models import (ENTITY_EXISTS, ModelRegistry, RobotModel, models_of_world,
                            robot_model_name, spawn_failure, spawn_refusal, urdf_model)
 from ..engine import gui_window
-from ..files.world_catalogue import WORLD_SUFFIXES, resolve_world
-from ..files.world_sdf import load_world
+from ..files.sdf.world_catalogue import WORLD_SUFFIXES, resolve_world
+from ..files.sdf.world_sdf import load_world
 
 __all__ = ["SimConfig", "Simulation", "OdomState", "ImuState"]
 # A robot's outputs in what step() returns: (the SimRobot, "odom"); the world's: (None, "clock").
@@ -110,13 +113,16 @@ class Simulation:
             description = read_urdf(config.urdf or urdf_path(config.model, bool(config.camera)))
         # Cameras render through EGL where it works; it must be loaded before any body. An
         # empty world (robots to be spawned) loads it in case one of them has a camera.
-        wants_camera = (description is None
+        wants_camera = (description is None or any(isinstance(s, CameraSensor)   # a world's too
+                                                   for s in self.world.sensors)
                         or (description.plugins.camera is not None and options.camera))
         self.physics = WorldPhysics(self.world, config.time_step, config.solver_iterations,
                                     config.gui, egl=wants_camera)
         self.physics_properties = PhysicsProperties.for_factor(
             config.time_step, 1.0, OdeConfig(sor_pgs_iters=config.solver_iterations),
-            (0.0, 0.0, -GRAVITY))
+            self.world.gravity)
+        if self.world.gravity != (0.0, 0.0, -GRAVITY):    # the world file's <gravity>
+            self.physics.set_gravity(self.world.gravity)
         # the world API's wrenches, joint efforts and weightless links (world_control)
         self.forces = AppliedForces(self.physics.client, lambda: self.physics_properties.gravity)
         # a rebuilt model's bodies are new: what the world API applied to the old ones goes
@@ -124,11 +130,17 @@ class Simulation:
         for model in models_of_world(self.world, self.physics.world_bodies, self.physics.client):
             self.models.add(model)
         self.actors = actor_motions(self.world, self.models)   # moved by their scripts
+        # the world models' sensors (spawned ones too), each at its rate: world_sensors
+        self.world_sensors = WorldSensors(self.physics, self.models, config.seed)
         self.step_ns = seconds_to_ns(config.time_step)
         self.time_ns = 0
         self.schedules: Dict[str, RateSchedule] = {"clock": RateSchedule(config.clock_rate)}
         self.robots: Dict[str, SimRobot] = {}
         self._robot_list: List[SimRobot] = []
+        # the models' and robots' model plugins (p3d, joint states, hector's): model_plugins
+        self.model_plugins = ModelPlugins(lambda: self.config.time_step, self.models,
+                                          self.robots, config.seed,
+                                          lambda: self.physics_properties.gravity)
         self.robot: Optional[SimRobot] = None
         self.robot_name = config.robot_name or robot_model_name(
             config.world if not config.world.endswith(WORLD_SUFFIXES) else "", config.model)
@@ -164,6 +176,8 @@ class Simulation:
     def _reset_schedules(self) -> None:
         for schedule in self.schedules.values():
             schedule.reset(self.time_ns)
+        self.world_sensors.reset(self.time_ns)
+        self.model_plugins.reset(self.time_ns)
         self._next_output_ns = self.time_ns
 
     # --- robots ------------------------------------------------------------------------------
@@ -238,6 +252,12 @@ class Simulation:
             return []
         due: List[Due] = [(None, name) for name, s in self.schedules.items() if s.due(now)]
         next_ns = min(s.next_ns for s in self.schedules.values())
+        if self.world_sensors.due(now):   # (None, "world_sensors"): world_sensors.due_now
+            due.append((None, WORLD_SENSORS))
+        next_ns = min(next_ns, self.world_sensors.next_ns)
+        if self.model_plugins.due(now):   # (None, "model_plugins"): model_plugins.due_now
+            due.append((None, MODEL_PLUGINS))
+        next_ns = min(next_ns, self.model_plugins.next_ns)
         for robot in self._robot_list:
             due.extend((robot, name) for name in robot.due(now))
             next_ns = min(next_ns, robot.next_output_ns)

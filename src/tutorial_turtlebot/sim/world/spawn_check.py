@@ -45,7 +45,7 @@ from typing import Callable, Iterable, Optional, Sequence, Tuple
 import numpy as np
 
 from ..kinematics import Pose, cross_2d, matrix_from_rpy, rotation_matrix
-from ..files.mesh_file import load_mesh
+from ..files.meshes.mesh_file import load_mesh
 from ..files.world_types import Shape, World
 
 LIFT_TOLERANCE = 0.001   # m: a floor at most this above the requested z leaves the pose as given

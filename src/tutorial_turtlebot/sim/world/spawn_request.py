@@ -8,15 +8,18 @@ Three kinds, as Gazebo's spawn services take them:
   ``RobotDescription``, ``description``), with box, cylinder, sphere or mesh geometry and no
   robot plugins: ``urdf`` is its text with the requested name and each mesh filename made the
   absolute path of its file (``package://``, ``file://``, or a path; a relative one from the
-  working directory), which engine.urdf_loader loads (meshes through urdf_meshes);
+  working directory), which engine.urdf_loader loads (meshes through urdf_meshes: the text of
+  ``bullet_urdf``, held in place where Gazebo holds it: ``<gazebo><static>``, a root link
+  ``world``);
 - a robot: a URDF whose ``<gazebo>`` blocks hold plugins: ``robot`` is its text as given, and
   the simulation builds it from ``description`` with its plugins (``Simulation.add_robot``).
 The text is parsed once (xml_reader) and checked once; everything downstream uses what that
 gives. Refused, with one line saying why (a RequestError whose text is the service's status
 message): text over ``MAX_XML_BYTES``, anything xml_reader refuses (malformed XML with its line,
 a DOCTYPE, nesting deeper than xml_reader.MAX_DEPTH), an unknown root, anything urdf_file or
-world_sdf refuses (a mesh file that cannot be found or is of an unknown kind, a bad mesh scale,
-any number beyond the limits of ``limits``), an initial pose beyond them.
+world_sdf refuses (a mesh file of an unknown kind, a bad mesh scale, any number beyond the limits
+of ``limits``), an initial pose beyond them. A URDF's visual or collision whose mesh file is found
+nowhere is left out, with a warning (``RobotDescription.warnings``), as an SDF's is.
 
 ``prepare_spawn`` does all of that outside the stepping loop (the world API calls it from the
 service's own thread), holds the spawn to the MAX_SPAWN_* budgets of what the loop may build,
@@ -35,11 +38,11 @@ from . import reference_frames as rf
 from ..files import limits
 from ..files import xml_reader
 from ..kinematics import xyz_rpy_from_pose
-from ..files.urdf_file import RobotDescription, read_urdf_element
-from ..files.urdf_meshes import absolute_meshes, mesh_paths
+from ..files.urdf.urdf_file import RobotDescription, read_urdf_element
+from ..files.urdf.urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths
 from ..engine.world_bullet import MOVABLE_KINDS
 from .world_models import spawn_failure, spawn_refusal
-from ..files.world_sdf import load_model_xml
+from ..files.sdf.world_sdf import load_model_xml
 from ..files.world_types import World
 from ..files.xml_reader import Element
 
@@ -79,6 +82,14 @@ class SpawnRequest:
         for gazebo in robot.findall("gazebo"):
             robot.remove(gazebo)
         return robot
+
+    def bullet_urdf(self) -> str:
+        """The text pybullet loads of a plain URDF: urdf_meshes.bullet_urdf_text of
+        ``plain_urdf``, held in place as Gazebo holds it (RobotDescription.static,
+        held_links)."""
+        description = self.description
+        return bullet_urdf_text(self.plain_urdf(), os.getcwd(), description.static,
+                                description.held_links())
 
 
 def _check_size(xml: str) -> None:
@@ -152,7 +163,7 @@ def _over(what: str, count: int, limit: int) -> RequestError:
 
 
 def _prepare_world(world: World, deadline: float, seconds: float) -> None:
-    from ..files.mesh_file import load_mesh      # trimesh and pycollada only for meshes
+    from ..files.meshes.mesh_file import load_mesh      # trimesh and pycollada only for meshes
     pieces = triangles = 0
     for shape in world.shapes:
         pieces += 1
@@ -178,14 +189,17 @@ def _prepare_world(world: World, deadline: float, seconds: float) -> None:
 
 
 def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> None:
-    from ..files.urdf_meshes import bullet_urdf_text, mesh_triangles
+    from ..files.urdf.urdf_meshes import mesh_triangles
     description = request.description
+    plain = request.urdf is not None
     shapes = sum(len(link.visuals) + len(link.collisions)
                  for link in description.links.values())
     if shapes > MAX_SPAWN_SHAPES:
         raise _over("shapes (links' collisions and visuals)", shapes, MAX_SPAWN_SHAPES)
     with spawn_refusal():
-        triangles, hull_vertices = mesh_triangles(description)
+        # the meshes of links held in place collide as triangles, not as hulls
+        triangles, hull_vertices = mesh_triangles(
+            description, description.held_links() if plain else ())
         if triangles > MAX_SPAWN_TRIANGLES:
             raise _over("mesh triangles", triangles, MAX_SPAWN_TRIANGLES)
         if hull_vertices > MAX_MOVABLE_MESH_VERTICES:
@@ -193,8 +207,11 @@ def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> Non
                         hull_vertices, MAX_MOVABLE_MESH_VERTICES)
         _check_time(deadline, seconds)
         # the conversions pybullet's copy needs, done now: building it later finds them made
-        bullet_urdf_text(absolute_meshes(description.root, mesh_paths(description)),
-                         os.getcwd())
+        if plain:
+            request.bullet_urdf()
+        else:
+            bullet_urdf_text(absolute_meshes(description.root, mesh_paths(description)),
+                             os.getcwd())
     _check_time(deadline, seconds)
 
 

@@ -19,7 +19,7 @@ from typing import Dict, List, Optional, Tuple
 
 from ...errors import RequestError
 from ..engine.bodies import Body, Joint
-from ..files.world_lights import Light
+from ..files.sdf.world_lights import Light
 from . import reference_frames as rf
 from .reference_frames import Pose, Twist
 from .world_configuration import ConfigurationRequests

@@ -1,11 +1,13 @@
-"""The world's lights in Gazebo's world API: get/set_light_properties over copies of the loaded
-world's lights (files/world_lights reads them)."""
+"""The world's lights in Gazebo's world API: get/set_light_properties and delete_light over
+copies of the loaded world's lights (files/world_lights reads them). A deleted light stays
+deleted through reset_world and reset_simulation, as in Gazebo. The camera images do not
+follow them: the renderer has a light of its own (engine/rendering)."""
 from dataclasses import replace
 from typing import Dict, Sequence
 
 from ...errors import RequestError
 from ..files import limits
-from ..files.world_lights import Light, lights_by_name
+from ..files.sdf.world_lights import Light, lights_by_name
 from . import reference_frames as rf
 from .reference_frames import Pose
 from .request_checks import check_names
@@ -29,6 +31,14 @@ class LightRequests:
         if light is None:
             raise RequestError("getLightProperties: Requested light %s not found!" % name)
         return replace(light)
+
+    def delete_light(self, name: str) -> str:
+        """Take light ``name`` out of the world: get/set_light_properties no longer find it.
+        The answer's status message (Gazebo's)."""
+        check_names("DeleteLight: ", light_name=name)
+        if self.lights().pop(name, None) is None:
+            raise RequestError("DeleteLight: Requested light %s not found!" % name)
+        return "DeleteLight: %s successfully deleted" % name
 
     def set_light(self, name: str, cast_shadows: bool, diffuse: Sequence[float],
                   specular: Sequence[float], attenuation: Sequence[float],

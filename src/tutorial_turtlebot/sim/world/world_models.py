@@ -16,10 +16,12 @@ from ...errors import RequestError, UserError
 from ..engine import urdf_loader
 from ..engine.bodies import Body
 from ..engine.client import Client
+from ..engine.movable_bodies import body_link_frames, movable_trees
 from ..engine.world_bullet import build_world, link_com_pose
 from . import reference_frames as rf
-from ..kinematics import pose_from_xyz_rpy
+from ..kinematics import pose_from_xyz_rpy, quat_from_matrix
 from .reference_frames import Pose, Twist
+from ..files.urdf.urdf_file import RobotDescription
 from ..files.world_types import World
 
 
@@ -74,9 +76,10 @@ class BodyPart:
 
 @dataclass
 class LinkPart:
-    """A link: either on a movable body (``body``, ``index`` -1 for the base whose frame is
-    ``in_body`` in the body's base frame, or a jointed link's index) or fixed in the model frame
-    (``body`` None, at ``in_model``)."""
+    """A link: either on a movable body (``body``; ``index`` -1 for the base, else a jointed
+    link's index; the link frame is ``in_body`` in that link's body frame: the base's centre of
+    mass, a jointed link's joint frame) or fixed in the model frame (``body`` None, at
+    ``in_model``)."""
 
     name: str
     body: Optional[Body] = None
@@ -135,8 +138,11 @@ class WorldModel:
             elif link.index < 0:
                 out.append((scoped, rf.compose(link.body.pose(), link.in_body),
                             link.body.twist()))
-            else:
-                out.append((scoped,) + link.body.link_frame(link.index))
+            else:     # a jointed link: its body frame (a URDF's link frame, an SDF joint's)
+                pose, twist = link.body.link_frame(link.index)
+                if link.in_body is not rf.IDENTITY:
+                    pose = rf.compose(pose, link.in_body)
+                out.append((scoped, pose, twist))
         return out
 
     def link(self, name: str) -> LinkPart:
@@ -250,17 +256,20 @@ class SdfModel(WorldModel):
 @dataclass
 class UrdfModel(WorldModel):
     """A model spawned from a plain URDF (no robot plugins): one body loaded from ``urdf``
-    (the text engine.urdf_loader loads) by ``urdf_loader.load_movable``."""
+    (the text engine.urdf_loader loads) by ``urdf_loader.load_movable``, with a fixed base
+    when Gazebo holds it in place (``description``, the URDF as read: static, or joined to the
+    world by a root link ``world``; RobotDescription.held_links)."""
 
     urdf: str = ""
+    description: Optional[RobotDescription] = None
 
     def _built_again(self):
         if not self.urdf or not self.parts:
             return None
         old = self.parts[0].body
-        body = urdf_loader.load_movable(old.client, self.urdf)
+        body = urdf_loader.load_movable(old.client, self.urdf, held(self.description))
         old.remove()
-        parts, links, _ = urdf_parts(body)
+        parts, links, _ = urdf_parts(body, self.description)
         body.set_pose(rf.compose(self.spawn_pose, parts[0].in_model))
         return parts, links
 
@@ -383,12 +392,17 @@ def models_of_world(world: World, bodies: Dict[str, int], client: Client) -> Lis
                                   movable=not shape.static))
         link_body = {s.link: bodies[s.name] for s in shapes
                      if not s.static and s.name in bodies}
+        in_trees = _jointed_links(spec, link_body) if not spec.static else {}
         links = []
         for link in spec.links:
             local = link.scoped[len(spec.name) + 2:]
             link_pose = pose_from_xyz_rpy(link.pose)
             uid = link_body.get(link.scoped)
-            if uid is None:
+            if link.scoped in in_trees:
+                uid, index, frame = in_trees[link.scoped]
+                links.append(LinkPart(local, body=Body(client, uid), index=index,
+                                      in_body=rf.compose(rf.inverse(frame), link_pose)))
+            elif uid is None:
                 links.append(LinkPart(local, in_model=rf.compose(to_model, link_pose)))
             else:
                 com = link_com_pose(link)
@@ -402,11 +416,44 @@ def models_of_world(world: World, bodies: Dict[str, int], client: Client) -> Lis
     return out
 
 
-def urdf_parts(body: Body) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
+def _jointed_links(spec, link_body: Dict[str, int]) -> Dict[str, Tuple[int, int, Pose]]:
+    """Scoped link -> (body id, link index, world pose of that link's body frame as built) of
+    every link of ``spec`` built into a multibody of joined links (engine.movable_bodies);
+    ``link_body``: scoped link -> body id of the links that have shapes."""
+    out = {}
+    links = {link.scoped: link for link in spec.links}
+    trees = movable_trees(World("", "", (spec.name,), (), (spec,)))
+    for tree in {id(t): t for t in trees.values()}.values():
+        uid = next((link_body[link] for link in tree.links if link in link_body), None)
+        if uid is None:
+            continue      # no shape anywhere: not built
+        frames = body_link_frames(tree, links)
+        for index, (entry, frame) in enumerate(zip(tree.body_links(), frames), start=-1):
+            if entry.link is not None:
+                out[entry.link] = (uid, index, (tuple(frame[0]), tuple(frame[1])))
+    return out
+
+
+# the <joint type> parser_urdf writes for a URDF joint type (get_joint_properties' kind)
+SDF_JOINT_TYPES = {"continuous": "revolute"}
+
+
+def held(description: Optional[RobotDescription]) -> bool:
+    """Whether Gazebo holds the URDF model of ``description`` in place (a fixed base)."""
+    return description is not None and bool(description.held_links())
+
+
+def urdf_parts(body: Body, description: Optional[RobotDescription] = None
+               ) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
     """(parts, links, joint names) of a body loaded from a URDF: the model frame is its root
     link's frame; links are the root and every jointed link (fixed links merged, as Gazebo
-    lumps them)."""
+    lumps them). A model Gazebo holds in place (``held``) has Gazebo's links and joints
+    (RobotDescription.model_links, model_joints): a static one does not move (its links are
+    fixed in the model frame); of a root ``world`` (the model frame), the links fixed to it
+    are on the fixed base."""
     com_in_root = body.com_in_root()
+    if held(description):
+        return _held_parts(body, description, com_in_root)
     links = [LinkPart(body.root_link(), body=body, in_body=rf.inverse(com_in_root))]
     joints = []
     for joint in body.joints():
@@ -415,16 +462,43 @@ def urdf_parts(body: Body) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
     return [BodyPart(body, com_in_root, movable=True)], links, joints
 
 
+def _held_parts(body: Body, description: RobotDescription, com_in_root: Pose):
+    """urdf_parts of a model Gazebo holds in place."""
+    root = description.root_link
+    joints = [joint.name for joint in description.model_joints()]
+
+    def in_root(link: str) -> Pose:
+        matrix = description.transform(root, link)
+        return tuple(float(v) for v in matrix[:3, 3]), tuple(quat_from_matrix(matrix[:3, :3]))
+    if description.static:
+        links = [LinkPart(link, in_model=in_root(link)) for link in description.model_links()]
+        return [BodyPart(body, com_in_root, movable=False)], links, joints
+    jointed = {joint.child_link: joint.index for joint in body.joints()}
+    to_com = rf.inverse(com_in_root)
+    links = [LinkPart(link, body=body, index=jointed[link]) if link in jointed
+             else LinkPart(link, body=body, in_body=rf.compose(to_com, in_root(link)))
+             for link in description.model_links()]
+    return [BodyPart(body, com_in_root, movable=True)], links, joints
+
+
 def urdf_model(kind, name: str, body: Body, spawn_pose: Optional[Pose] = None,
                collisions: Optional[Dict[str, List[str]]] = None, **fields) -> WorldModel:
     """A ``kind`` (UrdfModel or RobotModel) of a body loaded from a URDF, at ``spawn_pose``
     (None: where the body is now); ``collisions``: the URDF's
     RobotDescription.collision_names(), the model's geoms in link order; ``fields``: the
-    kind's own (urdf, robot_body)."""
-    parts, links, joints = urdf_parts(body)
+    kind's own (urdf and description, robot_body). A model Gazebo holds in place (a
+    UrdfModel's ``description`` says) lists the joints it does not simulate (a static
+    model's, a fixed joint to the world) with their kinds (``joint_types``)."""
+    description = fields.get("description")
+    parts, links, joints = urdf_parts(body, description)
     geoms = [geom for link in links for geom in (collisions or {}).get(link.name, ())]
-    model = kind(name, False, parts, links, spawn_pose or rf.IDENTITY, joints=joints,
-                 geoms=geoms, **fields)
+    static = description is not None and description.static
+    joint_types = {}
+    if held(description):
+        joint_types = {j.name: SDF_JOINT_TYPES.get(j.type, j.type)
+                       for j in description.model_joints() if static or j.type == "fixed"}
+    model = kind(name, static, parts, links, spawn_pose or rf.IDENTITY, joints=joints,
+                 joint_types=joint_types, geoms=geoms, **fields)
     if spawn_pose is None:
         model.spawn_pose = model.pose()
     return model

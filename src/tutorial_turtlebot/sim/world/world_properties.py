@@ -1,14 +1,16 @@
 """Model, link and joint properties of Gazebo's world API: get_model_properties,
-get/set_link_properties (mass, inertia, gravity) and get_joint_properties."""
+get/set_link_properties (mass, inertia, gravity) and get/set_joint_properties."""
 from dataclasses import dataclass
-from typing import List, Sequence, Tuple
+from typing import List, Mapping, Sequence, Tuple
 
 import numpy as np
 
 from ...errors import RequestError
+from ..engine.bodies import NO_STOP, ONE_AXIS
 from ..files import limits
 from ..kinematics import rotation_matrix
 from . import reference_frames as rf
+from .physics_properties import MAX_TIME_STEP
 from .request_checks import check_names
 from .world_models import LinkPart, WorldModel
 
@@ -47,6 +49,43 @@ class JointProperties:
 
 JOINT_KINDS = ("revolute", "prismatic", "ball")   # what get_joint_properties names (else revolute)
 COM_TOLERANCE = 1e-6          # m: a set com.position this close to the present one is unchanged
+# set_joint_properties' ode_joint_config (gazebo_msgs/ODEJointProperties): each array's field
+# name -> the bounds (low, high) and unit every element is held to. Gazebo sets element i on
+# axis i; the joints here have one axis, so the first element is what counts (damping, hiStop,
+# loStop, fmax, vel are applied; erp, cfm, stop_erp, stop_cfm, fudge_factor are ODE's own).
+JOINT_CONFIG_FIELDS = {
+    "damping": (0.0, limits.MAX_DAMPING, "N m s/rad or N s/m"),
+    "hiStop": (-limits.MAX_JOINT_POSITION, limits.MAX_JOINT_POSITION, "rad or m"),
+    "loStop": (-limits.MAX_JOINT_POSITION, limits.MAX_JOINT_POSITION, "rad or m"),
+    "erp": (-limits.MAX_ODE_VALUE, limits.MAX_ODE_VALUE, ""),
+    "cfm": (-limits.MAX_ODE_VALUE, limits.MAX_ODE_VALUE, ""),
+    "stop_erp": (-limits.MAX_ODE_VALUE, limits.MAX_ODE_VALUE, ""),
+    "stop_cfm": (-limits.MAX_ODE_VALUE, limits.MAX_ODE_VALUE, ""),
+    "fudge_factor": (-limits.MAX_ODE_VALUE, limits.MAX_ODE_VALUE, ""),
+    "fmax": (0.0, limits.MAX_FORCE, "N m or N"),
+    "vel": (-limits.MAX_ANGULAR_SPEED, limits.MAX_ANGULAR_SPEED, "rad/s or m/s")}
+
+
+def joint_config_problem(config: Mapping[str, Sequence[float]]) -> str:
+    """The refusal of the first element of ``config`` (ODEJointProperties' field name -> its
+    array) that is NaN, infinite or out of JOINT_CONFIG_FIELDS' bounds; "" if there is none.
+    Every element is checked (at numpy's pace: an array may be long)."""
+    for field, (low, high, unit) in JOINT_CONFIG_FIELDS.items():
+        values = config.get(field, ())
+        if len(values) == 0:
+            continue
+        try:
+            array = np.asarray(values, dtype=float).reshape(-1)
+        except (TypeError, ValueError, OverflowError):
+            return "ode_joint_config.%s must be numbers" % field
+        bad = np.flatnonzero(~(np.isfinite(array) & (array >= low) & (array <= high)))
+        if bad.size:
+            i = int(bad[0])
+            if not np.isfinite(array[i]):
+                return "ode_joint_config.%s[%d]: NaN or infinite value" % (field, i)
+            return limits.outside("ode_joint_config.%s[%d]" % (field, i), float(array[i]),
+                                  low, high, unit)
+    return ""
 
 
 class PropertyRequests:
@@ -66,7 +105,8 @@ class PropertyRequests:
         """(mass, com position in the link frame, rotation of pybullet's inertia axes in the
         link frame as a 3x3, principal moments) of a movable link."""
         inertial = link.body.inertial(link.index)
-        com = rf.inverse(link.in_body) if link.index < 0 else inertial.com
+        com = rf.inverse(link.in_body) if link.index < 0 else \
+            rf.compose(rf.inverse(link.in_body), inertial.com)
         rotation = rotation_matrix(com[1])
         return inertial.mass, tuple(com[0]), rotation, np.array(inertial.moments, dtype=float)
 
@@ -148,4 +188,54 @@ class PropertyRequests:
             return JointProperties(kind, [0.0], [0.0], [0.0])
         position, rate = body.joint_state(found.index)
         kind = found.kind if found.kind in JOINT_KINDS else "revolute"
-        return JointProperties(kind, [found.damping], [float(position)], [float(rate)])
+        return JointProperties(kind, [body.joint_damping(found.index)], [float(position)],
+                               [float(rate)])
+
+    def set_joint_properties(self, joint: str, config: Mapping[str, Sequence[float]]) -> None:
+        """Set what Gazebo's set_joint_properties sets of a joint (found as get_joint_properties
+        finds it), from ``config``: ODEJointProperties' field name -> its array, of which the
+        first element counts (an empty array changes nothing). A one-axis joint (revolute,
+        prismatic) takes damping (N m s/rad or N s/m), hiStop and loStop (rad or m; the side not
+        given keeps its stop) and fmax and vel (its velocity motor: at most fmax N m or N
+        towards vel rad/s or m/s; the side not given keeps its value); erp, cfm, stop_erp,
+        stop_cfm and fudge_factor are checked and left (ODE's own). Every element must be
+        finite and within JOINT_CONFIG_FIELDS' bounds, and the stops must leave a range (loStop
+        <= hiStop): else RequestError, and nothing is changed. A joint that is listed but not
+        simulated (an SDF model's) takes the request and nothing moves."""
+        check_names("SetJointProperties: ", joint_name=joint)
+        try:
+            _, body, found = self._joint(joint, "SetJointProperties")
+        except RequestError:
+            if self._listed_joint(joint) is None:
+                raise
+            body = found = None
+        problem = joint_config_problem(config)
+        if problem:
+            raise RequestError("SetJointProperties: %s" % problem)
+        if found is None or found.kind not in ONE_AXIS:
+            return
+        first = {field: float(values[0]) for field, values in config.items()
+                 if field in JOINT_CONFIG_FIELDS and len(values) > 0}
+        index = found.index
+        stops = None
+        if "hiStop" in first or "loStop" in first:
+            lower, upper = body.joint_stops(index)
+            lower, upper = first.get("loStop", lower), first.get("hiStop", upper)
+            if lower > upper:
+                raise RequestError(
+                    "SetJointProperties: loStop %s is above hiStop %s (rad or m): the joint "
+                    "would have no range; keep loStop <= hiStop" % (
+                        _stop_text(lower), _stop_text(upper)))
+            stops = lower, upper
+        if "damping" in first:
+            body.set_joint_damping(index, first["damping"], MAX_TIME_STEP)
+        if stops is not None:
+            body.set_joint_stops(index, *stops)
+        if "vel" in first or "fmax" in first:
+            velocity, max_force = body.joint_motor(index)
+            body.set_joint_motor(index, first.get("vel", velocity), first.get("fmax", max_force))
+
+
+def _stop_text(value: float) -> str:
+    """A stop as a refusal names it: "none" for a side without a stop."""
+    return "none" if abs(value) >= NO_STOP else "%g" % value

@@ -12,14 +12,14 @@ from ..engine import urdf_loader
 from ..engine.bodies import Body
 from ..engine.bullet_shapes import ShapeBudgetError
 from ..engine.world_bullet import build_world, place_world_bodies, reused_world_bodies
-from ..files.urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths, urdf_text
+from ..files.urdf.urdf_meshes import absolute_meshes, mesh_paths, urdf_text
 from . import reference_frames as rf
 from .reference_frames import Pose
 from .request_checks import check_names
 from .spawn_request import SpawnRequest, placed, prepare_spawn
 from .world_models import (ENTITY_EXISTS, SPAWN_FAILURE, UrdfModel, WorldModel,
-                           check_model_name, models_of_world, spawn_failure, spawn_refusal,
-                           urdf_model)
+                           check_model_name, held, models_of_world, spawn_failure,
+                           spawn_refusal, urdf_model)
 
 
 class SpawnRequests:
@@ -65,7 +65,8 @@ class SpawnRequests:
         """Step 3, in the loop: build what ``spawn_request.prepare_spawn`` read and checked
         (step 2, anywhere) at world ``pose``: bounded work, the pybullet calls only. Returns
         the building's warning lines (an SDF model's textures that the texture budget halved
-        or that cannot be read now), for the caller to log."""
+        or that cannot be read now; what a plain URDF left out, RobotDescription.warnings: a
+        robot's are its own, SimRobot.warnings), for the caller to log."""
         name = request.name
         if name in self.models:       # taken since step 1
             raise RequestError(ENTITY_EXISTS)
@@ -92,6 +93,7 @@ class SpawnRequests:
         else:
             model = self._load_urdf(request, pose)
             key, built = self._urdf_key(request), [model.parts[0].body.uid]
+            warnings += request.description.warnings
         self.models.add(model)
         self._spawned[name] = (key, built)
         return warnings
@@ -116,23 +118,26 @@ class SpawnRequests:
 
     def _load_urdf(self, request: SpawnRequest, pose: Pose) -> WorldModel:
         """A model of the plain URDF of ``request`` loaded at ``pose``, written for pybullet
-        one element a line (urdf_meshes.bullet_urdf_text: it cuts long lines)."""
+        one element a line (urdf_meshes.bullet_urdf_text: it cuts long lines), with a fixed
+        base where Gazebo holds it in place (world_models.held)."""
         client = self.sim.physics.client
         name = request.name
-        collisions = request.description.collision_names()
+        description = request.description
+        fixed = held(description)
         with spawn_refusal():   # meshes as pybullet loads them (urdf_meshes; prepared: cached)
-            urdf = bullet_urdf_text(request.plain_urdf(), os.getcwd())
+            urdf = request.bullet_urdf()
         pool = self.sim.physics.body_pool
         reused = pool.take(self._urdf_key(request))
         if reused:
-            urdf_loader.setup_movable(client, reused[0])
+            urdf_loader.setup_movable(client, reused[0], fixed)
             body = Body(client, reused[0])
         else:
             with spawn_refusal():
-                body = urdf_loader.load_movable(client, urdf)
+                body = urdf_loader.load_movable(client, urdf, fixed)
             pool.remember([body.uid])
-        model = urdf_model(UrdfModel, name, body, spawn_pose=pose, collisions=collisions,
-                           urdf=urdf)
+        model = urdf_model(UrdfModel, name, body, spawn_pose=pose,
+                           collisions=description.collision_names(), urdf=urdf,
+                           description=description)
         model.set_state(pose, rf.ZERO_TWIST)
         return model
 

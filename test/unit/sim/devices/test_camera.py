@@ -14,8 +14,8 @@ from PIL import Image
 from tutorial_turtlebot.sim.devices import camera
 from tutorial_turtlebot.sim.devices.camera import (CameraIntrinsics, depth_image, jpeg_bytes,
                                                    pointcloud_bytes, pointcloud_xyz)
-from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.files.plugins.robot_plugin_types import CameraSpec
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
 
 
 def urdf_camera(model, autorace=False):

@@ -7,7 +7,7 @@ from tutorial_turtlebot.sim.devices.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR
                                                        DiffDriveController, body_twist,
                                                        sanitize_command, wheel_rim_speeds)
 from tutorial_turtlebot.robot_models import MODEL_NAMES
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
 
 SEPARATIONS = (0.160, 0.287)   # burger, waffle / waffle_pi
 RADIUS = 0.033

@@ -12,12 +12,12 @@ import pytest
 
 from tutorial_turtlebot.sim.engine import rendering
 from tutorial_turtlebot.sim.engine.client import Client
-from tutorial_turtlebot.sim.files import obj_writer, texture_images
+from tutorial_turtlebot.sim.files.meshes import obj_writer, texture_images
 from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
-from tutorial_turtlebot.sim.files.mesh_file import cache_clear, load_mesh
-from tutorial_turtlebot.sim.files.obj_writer import write_obj_parts
-from tutorial_turtlebot.sim.files import urdf_meshes
-from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
+from tutorial_turtlebot.sim.files.meshes.mesh_file import cache_clear, load_mesh
+from tutorial_turtlebot.sim.files.meshes.obj_writer import write_obj_parts
+from tutorial_turtlebot.sim.files.urdf import urdf_meshes
+from tutorial_turtlebot.sim.files.plugins.robot_plugin_types import CameraSpec
 
 from texture_fixtures import (QUADRANTS, camera_sim, cube, pixel, png_bytes, quadrant_texture,
                               write_textured_dae, write_textured_obj)
@@ -365,7 +365,7 @@ def test_a_urdf_mesh_is_drawn_textured(tmp_path, renderer):
 
 
 def test_a_urdf_robot_names_its_missing_texture_in_one_warning(tmp_path):
-    from tutorial_turtlebot.sim.files.urdf_file import read_urdf
+    from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf
     write_textured_obj(tmp_path, texture="gone.png", kd="1 0 0", write_texture=False)
     (tmp_path / "r.urdf").write_text("""<robot name="r"><link name="a">
       <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>\
@@ -380,7 +380,7 @@ def test_a_urdf_robot_names_its_missing_texture_in_one_warning(tmp_path):
 def test_the_common_gazebo_materials_have_colours():
     """Gazebo 11's common gazebo.material names are drawn in a colour of their own (the
     textured ones in their texture's mean colour), not the grey of an unknown name."""
-    from tutorial_turtlebot.sim.files.gazebo_materials import GAZEBO_MATERIALS
+    from tutorial_turtlebot.sim.files.looks.gazebo_materials import GAZEBO_MATERIALS
     from tutorial_turtlebot.sim.files.world_types import DEFAULT_RGBA
     names = ("White Grey DarkGrey Black FlatBlack Red RedBright Green Blue SkyBlue Yellow "
              "ZincYellow DarkYellow Purple Turquoise Orange Indigo Wood WoodFloor WoodPallet "

@@ -13,9 +13,9 @@ from tutorial_turtlebot.sim.engine.physics import (FIRST_ROBOT_BIT, GRAVITY, MAX
 from tutorial_turtlebot.sim.engine.robot_body import SPAWN_CLEARANCE, RobotBody
 from tutorial_turtlebot.sim.engine.world_bullet import (ALL_COLLISION_GROUPS,
                                                         WORLD_COLLISION_GROUP)
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
-from tutorial_turtlebot.sim.files.world_catalogue import resolve_world
-from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.files.sdf.world_catalogue import resolve_world
+from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 
 STEP = 0.0025
 

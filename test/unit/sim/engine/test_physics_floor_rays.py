@@ -10,7 +10,7 @@ import pytest
 
 from tutorial_turtlebot.sim.engine.physics import WorldPhysics
 from tutorial_turtlebot.sim.engine.world_bullet import MOVABLE_COLLISION_GROUP
-from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 
 import unit_paths
 

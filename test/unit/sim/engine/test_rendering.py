@@ -19,8 +19,8 @@ from tutorial_turtlebot.sim.devices.camera import CameraIntrinsics
 from tutorial_turtlebot.sim.engine.rendering import (BACKGROUND_RGB, CameraRenderer, validate_spec,
                                                      view_matrix)
 from tutorial_turtlebot.errors import UserError
-from tutorial_turtlebot.sim.files.robot_plugin_types import CameraSpec
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.files.plugins.robot_plugin_types import CameraSpec
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.engine.world_bullet import WORLD_COLLISION_GROUP
 

@@ -1,20 +1,27 @@
 """The one way a URDF becomes a pybullet body (engine/urdf_loader.py): load_urdf's flags (fixed
 links merged, the file's inertia, true cylinders), its one-line error for a bad file, the set-up
-of a spawned movable model (load_movable), and the mass of a bare link once spawned. No ROS
-master."""
+of a spawned movable model (load_movable), one held in place (a fixed base, its meshes as
+triangles), and the mass of a bare link once spawned. No ROS master."""
 import os
+from xml.etree import ElementTree
 
 import pybullet
 import pytest
 
 from tutorial_turtlebot.errors import UserError
+from tutorial_turtlebot.sim.engine import collision_filters
 from tutorial_turtlebot.sim.engine.bodies import Body
 from tutorial_turtlebot.sim.engine.urdf_loader import load_movable, load_urdf
-from tutorial_turtlebot.sim.engine.world_bullet import (ALL_COLLISION_GROUPS,
-                                                        MOVABLE_COLLISION_GROUP,
-                                                        WORLD_COLLISION_GROUP)
-from tutorial_turtlebot.sim.files.urdf_meshes import BARE_LINK_MASS
+from tutorial_turtlebot.sim.engine.collision_groups import (ALL_COLLISION_GROUPS,
+                                                            MOVABLE_COLLISION_GROUP,
+                                                            WORLD_COLLISION_GROUP,
+                                                            WORLD_COLLISION_MASK)
+from tutorial_turtlebot.sim.files.urdf import urdf_meshes
+from tutorial_turtlebot.sim.files.urdf.urdf_meshes import BARE_LINK_MASS
 from unit_helpers import WHEEL, at
+import unit_paths
+
+ANCHORS = os.path.normpath(os.path.join(unit_paths.UNIT, os.pardir, "fixtures", "urdf_anchors"))
 
 # A 2 kg base whose inertia (not a box's: a 0.4 x 0.2 x 0.1 box of 2 kg has 0.0083 0.0283
 # 0.0333) is the file's; a 1 kg plate welded on it (fixed joint); a wheel on a continuous joint.
@@ -178,3 +185,43 @@ def test_a_spawned_bare_link_weighs_next_to_nothing(empty):
     assert pybullet.getDynamicsInfo(uid, 0, physicsClientId=cid)[0] == pytest.approx(1e-6)
     assert pybullet.getDynamicsInfo(uid, -1, physicsClientId=cid)[0] == pytest.approx(
         0.5, abs=1e-5)
+
+
+# --- a model held in place (a static URDF, a root link "world"): a fixed base ------------------
+
+def test_a_fixed_base_stays_where_it_is_put_and_collides_as_a_world_body(client):
+    """load_movable with fixed_base: gravity and a falling box move nothing; its base is in
+    the world's collision group (a laser's rays see it), its turning links in the movable
+    one; set_pose still moves it."""
+    collision_filters.track(client)
+    pybullet.setGravity(0, 0, -9.8, physicsClientId=client)
+    held = load_movable(client, WHEEL, fixed_base=True)
+    falling = load_movable(client, WHEEL)
+    held.set_pose(((0.0, 0.0, 1.0), (0.0, 0.0, 0.0, 1.0)))
+    falling.set_pose(((0.0, 0.0, 2.0), (0.0, 0.0, 0.0, 1.0)))   # lands on the held one
+    for _ in range(480):
+        pybullet.stepSimulation(physicsClientId=client)
+    assert held.pose() == ((0.0, 0.0, 1.0), (0.0, 0.0, 0.0, 1.0))
+    assert 1.0 < falling.pose()[0][2] < 1.9                     # resting on it, above it
+    filters = collision_filters.colliders(client)
+    assert filters[(held.uid, -1)] == (WORLD_COLLISION_GROUP, WORLD_COLLISION_MASK)
+    assert filters[(held.uid, 0)] == (MOVABLE_COLLISION_GROUP, ALL_COLLISION_GROUPS)
+    assert filters[(falling.uid, -1)] == (MOVABLE_COLLISION_GROUP, ALL_COLLISION_GROUPS)
+    held.set_pose(((3.0, 0.0, 1.0), (0.0, 0.0, 0.0, 1.0)))
+    pybullet.stepSimulation(physicsClientId=client)
+    assert held.pose()[0] == (3.0, 0.0, 1.0)
+
+
+def test_a_concave_mesh_collides_as_triangles_on_a_fixed_base(client, tmp_path):
+    """The text bullet_urdf_text writes for a held link (its collision mesh as triangles,
+    concave="yes"): a ray down into the open trough meets its floor, not the hull's top."""
+    trough = os.path.join(ANCHORS, "meshes", "trough.obj")
+    text = ('<robot name="t"><link name="base"><collision><geometry><mesh filename="%s"/>'
+            '</geometry></collision></link></robot>' % trough)
+    root = ElementTree.fromstring(text)
+    for held, top in ((("base",), 0.0), ((), 1.0)):
+        body = load_movable(client, urdf_meshes.bullet_urdf_text(root, str(tmp_path), False,
+                                                                 held), fixed_base=True)
+        hit = pybullet.rayTest((0, 0, 3), (0, 0, -1), physicsClientId=client)[0]
+        assert hit[0] == body.uid and hit[3][2] == pytest.approx(top, abs=0.01)
+        body.remove()

@@ -178,8 +178,8 @@ def test_nothing_is_noted_without_egl(monkeypatch, tmp_path):
     monkeypatch.setattr(world_bullet, "egl_enabled", lambda cid: False)
     client = Client.connect()
     try:
-        from tutorial_turtlebot.sim.files.world_sdf import load_world
-        from tutorial_turtlebot.sim.files.world_catalogue import resolve_world
+        from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
+        from tutorial_turtlebot.sim.files.sdf.world_catalogue import resolve_world
         world_bullet.build_world(load_world(resolve_world("turtlebot3_world")[0]), client)
         assert not client.view_noted
     finally:

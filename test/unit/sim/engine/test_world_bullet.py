@@ -7,8 +7,8 @@ import pytest
 
 from tutorial_turtlebot.sim.engine.world_bullet import (PLANE_MIN_EXTENT, WORLD_COLLISION_GROUP,
                                                         WORLD_FRICTION, build_world)
-from tutorial_turtlebot.sim.files.world_catalogue import WORLDS, resolve_world
-from tutorial_turtlebot.sim.files.world_sdf import load_world
+from tutorial_turtlebot.sim.files.sdf.world_catalogue import WORLDS, resolve_world
+from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 
 SCAN_Z = 0.182          # burger scan plane, m
 SPAWN = WORLDS["turtlebot3_world"].spawn

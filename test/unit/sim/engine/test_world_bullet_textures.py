@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from tutorial_turtlebot.sim.engine import rendering, texture_budget
-from tutorial_turtlebot.sim.files.mesh_file import cache_clear
+from tutorial_turtlebot.sim.files.meshes.mesh_file import cache_clear
 
 from texture_fixtures import (QUADRANTS, RED, camera_sim, pixel, png_bytes, quadrant_texture,
                               write_textured_obj)
@@ -114,7 +114,7 @@ def test_every_texture_found_is_drawn_or_named_in_one_warning(tmp_path):
     """A mesh whose visual has an SDF <material> is drawn in that colour: its texture, found by
     the reader, is named in one line (at most 200 characters, once however many models use
     the mesh); so is a texture found nowhere."""
-    from tutorial_turtlebot.sim.files.world_sdf import load_world
+    from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
     write_textured_obj(tmp_path)
     (tmp_path / "gone").mkdir()
     write_textured_obj(tmp_path / "gone", texture="gone.png", write_texture=False)

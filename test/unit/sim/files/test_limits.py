@@ -11,9 +11,9 @@ from tutorial_turtlebot.sim.files import limits
 from tutorial_turtlebot.sim.devices.diff_drive import SAFE_ANGULAR, SAFE_LINEAR, sanitize_command
 from tutorial_turtlebot.sim.world.physics_properties import OdeConfig, PhysicsProperties
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf_text
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf_text
 from tutorial_turtlebot.sim.world.world_control import RequestError, WorldControl
-from tutorial_turtlebot.sim.files.world_sdf import load_model_xml
+from tutorial_turtlebot.sim.files.sdf.world_sdf import load_model_xml
 
 from unit_helpers import CUBE, ROBOT, at, run
 

@@ -10,9 +10,9 @@ from tutorial_turtlebot.sim.files import xml_reader
 from tutorial_turtlebot.package_data import data_dir
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world.spawn_request import parse_spawn
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf_text
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf_text
 from tutorial_turtlebot.sim.world.world_control import WorldControl
-from tutorial_turtlebot.sim.files.world_sdf import load_model_xml
+from tutorial_turtlebot.sim.files.sdf.world_sdf import load_model_xml
 
 DOCTYPE = '<?xml version="1.0"?>\n<!DOCTYPE x [<!ENTITY a "aaaa">]>\n'
 PLAIN_URDF = """<robot name="thing">

@@ -15,7 +15,7 @@ import pybullet
 import pytest
 
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
 
 SETTLE = 1.0           # s: the spawn drop (SPAWN_CLEARANCE) and the tip onto the caster
 IDLE = 600.0           # s of sim time without a command

@@ -10,7 +10,7 @@ from tutorial_turtlebot.errors import RequestError, UserError
 from tutorial_turtlebot.sim.engine.physics import MAX_ROBOTS
 from tutorial_turtlebot.sim.world.sim_robot import normalize_namespace
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf
 from tutorial_turtlebot.sim.world.world_control import WorldControl
 
 from unit_helpers import at, run, urdf_text

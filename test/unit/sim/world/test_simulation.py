@@ -15,7 +15,7 @@ from tutorial_turtlebot.sim.devices.diff_drive import SAFE_LINEAR
 from tutorial_turtlebot.errors import UserError
 from tutorial_turtlebot.robot_models import MODELS
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
 
 from unit_helpers import run as run_counting
 

@@ -11,7 +11,7 @@ import numpy as np
 import pybullet
 import pytest
 
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, urdf_path
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, urdf_path
 from tutorial_turtlebot.sim.kinematics import quat_from_rpy
 from tutorial_turtlebot.sim.world import spawn_check
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation

@@ -1,6 +1,7 @@
 """Spawn requests: SDF and URDF model_xml, name rules, refusals (sim/world/spawn_request).
 No ROS."""
 import math
+import os
 
 import pytest
 
@@ -91,8 +92,8 @@ def test_urdf_without_plugins():
     ("<!DOCTYPE x [<!ENTITY a 'aaaa'>]><sdf/>", "DOCTYPE"),
     ("<sdf>" + "<model name='m'>" * 100 + "</model>" * 100 + "</sdf>", "nested more than"),
     ("<sdf>" + " " * (MAX_XML_BYTES + 1) + "</sdf>", "more than the 1000000 allowed"),
-    (URDF.replace("<sphere radius=\"0.05\"/>", "<mesh filename='package://x/y.stl'/>"),
-     "model_xml:4: link 'top' <mesh>: package://x/y.stl: no ROS package 'x'"),
+    (URDF.replace("<sphere radius=\"0.05\"/>", "<mesh filename='%s'/>" % os.path.abspath(
+        __file__)), "test_spawn_request.py: unknown mesh format '.py'"),
     (URDF.replace('<parent link="base"/>', '<parent link="nowhere"/>'),
      "model_xml:5: joint 'hinge' <parent>: link 'nowhere' is not defined"),
 ])

@@ -7,7 +7,7 @@ import pytest
 
 from tutorial_turtlebot.errors import RequestError
 from tutorial_turtlebot.package_data import data_dir
-from tutorial_turtlebot.sim.files.urdf_file import read_urdf, read_urdf_text
+from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, read_urdf_text
 
 from unit_helpers import CUBE, ROBOT, WHEEL, at, box_sdf, run
 
@@ -155,14 +155,19 @@ HINGED_SDF = ("<sdf version='1.6'><model name='x'><link name='frame'><collision 
 
 
 def test_an_sdf_joint_that_get_model_properties_lists_has_properties(empty):
-    """An SDF model's joints are listed but not simulated: still, at their <joint type>."""
-    _, wc = empty
+    """An SDF model's joints are listed; the hinge is simulated, the weld that gives the door
+    a second parent is left out of the tree (listed, still, at its <joint type>)."""
+    sim, wc = empty
     wc.spawn("cabinet", HINGED_SDF, at(2, 2, 0.05))
     assert wc.model_properties("cabinet").joint_names == ["hinge", "weld"]
     for name, kind in (("hinge", "revolute"), ("cabinet::hinge", "revolute"),
                        ("cabinet::weld", "fixed")):
         j = wc.get_joint_properties(name)
         assert (j.kind, j.damping, j.position, j.rate) == (kind, [0.0], [0.0], [0.0])
+    wc.apply_joint_effort("cabinet::hinge", 0.5, 0, int(0.2e9))
+    run(sim, 0.3)
+    assert wc.get_joint_properties("cabinet::hinge").position[0] > 0.01     # it swings
+    assert wc.get_joint_properties("cabinet::weld").position == [0.0]
     with pytest.raises(RequestError, match="^GetJointProperties: joint not found$"):
         wc.get_joint_properties("cabinet::elbow")
 

@@ -1,0 +1,1 @@
+"""How things look: SDF materials, Gazebo's named materials, OGRE material scripts."""

@@ -1,0 +1,1 @@
+"""Mesh files: STL, OBJ, Collada; their textures, the disk cache, the files pybullet reads."""

@@ -1,0 +1,1 @@
+"""Gazebo plugins and sensors as a model declares them, read into plain data."""

@@ -1,0 +1,1 @@
+"""SDF: worlds, models, their frames, elements, inertia, lights, actors, saved state."""

@@ -1,0 +1,1 @@
+"""URDF: robots and spawned models, and the URDF text pybullet loads."""

@@ -1,0 +1,186 @@
+"""Jointed SDF models simulated (engine.movable_bodies through Simulation): a pendulum keeps the
+period its length gives, a cart rests level on its wheels, limits, damping, ball, universal and
+fixed joints act as Gazebo's do, a loop runs as its nearest tree, and the world API reads and
+drives the joints. The worlds are this project's fixtures (test/fixtures/joints/)."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+from tutorial_turtlebot.sim.kinematics import rpy_from_quat
+from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
+from tutorial_turtlebot.sim.world.world_control import WorldControl
+
+import unit_paths
+
+JOINTS = os.path.join(unit_paths.FIXTURES, "joints")
+STEPS_PER_S = 400          # Simulation's 2.5 ms steps
+
+
+@pytest.fixture(scope="module")
+def joints():
+    """The joints fixture world stepped 5 s from rest: (sim, wc, link poses at the start)."""
+    sim = Simulation(SimConfig(world=os.path.join(JOINTS, "joints.world"), spawn_robot=False))
+    start = {name: links(sim, name) for name in sim.models.names()}
+    for _ in range(5 * STEPS_PER_S):
+        sim.step()
+    yield sim, WorldControl(sim), start
+    sim.close()
+
+
+def links(sim, model):
+    """{scoped link: world pose} of ``model`` now."""
+    return {name: pose for name, pose, _ in sim.models.get(model).link_states()}
+
+
+def swing(world, steps, link="pendulum::bob", model="pendulum"):
+    """A new Simulation of ``world`` stepped ``steps`` times: (times s, x of ``link``, sim)."""
+    sim = Simulation(SimConfig(world=os.path.join(JOINTS, world), spawn_robot=False))
+    xs, ts = [], []
+    for _ in range(steps):
+        sim.step()
+        xs.append(links(sim, model)[link][0][0])
+        ts.append(sim.time)
+    return np.array(ts), np.array(xs), sim
+
+
+def upward_crossings(ts, xs, centre=0.0):
+    return [ts[i] for i in range(1, len(xs)) if xs[i - 1] < centre <= xs[i]]
+
+
+def test_pendulum_period_matches_its_length():
+    ts, xs, sim = swing("pendulum.world", 12 * STEPS_PER_S)
+    sim.close()
+    period = float(np.mean(np.diff(upward_crossings(ts, xs))))
+    length, bob_i = 1.0, 0.001      # pendulum.world: the bob 1 m out, its own moment
+    expected = 2 * math.pi * math.sqrt((length ** 2 + bob_i) / (9.8 * length))
+    assert abs(period - expected) / expected < 0.02
+    # nothing damps it: the swing keeps its 0.1 rad (0.0998 m) amplitude
+    assert xs[-2 * STEPS_PER_S:].max() > 0.095
+
+
+def test_pendulum_hinge_stays_put():
+    """The bob stays 1 m from the hinge at (0, 0, 2) however it swings."""
+    ts, xs, sim = swing("pendulum.world", 3 * STEPS_PER_S)
+    pos = links(sim, "pendulum")["pendulum::bob"][0]
+    sim.close()
+    assert abs(math.dist(pos, (0.0, 0.0, 2.0)) - 1.0) < 1e-3
+
+
+def test_links_start_where_the_file_puts_them(joints):
+    _, _, start = joints
+    cart = start["cart"]
+    assert np.allclose(cart["cart::left_wheel"][0], (-0.1, 0.18, 0.1), atol=1e-9)
+    assert np.allclose(rpy_from_quat(cart["cart::left_wheel"][1]), (-math.pi / 2, 0, 0),
+                       atol=1e-6)
+    assert np.allclose(start["welded"]["welded::upper"][0], (15.0, 0.0, 0.8), atol=1e-9)
+
+
+def test_cart_rests_level_on_its_wheels(joints):
+    sim, _, start = joints
+    chassis = links(sim, "cart")["cart::chassis"]
+    roll, pitch, _ = rpy_from_quat(chassis[1])
+    assert abs(roll) < 0.01 and abs(pitch) < 0.01
+    assert abs(chassis[0][2] - 0.15) < 0.01
+    # the wheels stay on their axles: 0.18 m either side of the chassis
+    wheels = links(sim, "cart")
+    assert abs(wheels["cart::left_wheel"][0][1] - chassis[0][1] - 0.18) < 1e-3
+
+
+def test_prismatic_slider_stops_at_its_lower_limit(joints):
+    sim, wc, _ = joints
+    assert abs(links(sim, "slider")["slider::block"][0][2] - 0.8) < 0.005
+    assert abs(wc.get_joint_properties("rail").position[0] + 0.2) < 0.005
+
+
+def test_the_world_api_knows_each_joint_as_built(joints):
+    sim, wc, _ = joints
+    [slider] = sim.models.get("slider").parts
+    [rail] = slider.body.joints()
+    assert (rail.name, rail.kind, rail.child_link) == ("rail", "prismatic", "block")
+    assert slider.body.joint_stops(rail.index) == (-0.2, 0.2)
+    assert wc.get_joint_properties("damped::hinge").damping == [0.5]
+    [gimbal] = sim.models.get("gimbal").parts
+    assert [j.name for j in gimbal.body.joints()] == ["cross", ""]   # two axes, one name
+
+
+def test_damping_takes_the_swing_out(joints):
+    sim, _, start = joints
+    x0 = start["damped"]["damped::bob"][0][0] - 6.0
+    x = links(sim, "damped")["damped::bob"][0][0] - 6.0
+    assert abs(x0) > 0.09 and abs(x) < 0.5 * abs(x0)
+
+
+@pytest.mark.parametrize("model", ["ball", "gimbal"])
+def test_two_axis_bobs_swing_about_their_pivot(joints, model):
+    sim, _, start = joints
+    pivot = np.array(start[model][model + "::bob"][0]) + (-0.1, -0.1, 0.98)
+    now = np.array(links(sim, model)[model + "::bob"][0])
+    assert abs(np.linalg.norm(now - pivot) - np.linalg.norm((0.1, 0.1, 0.98))) < 2e-3
+    assert np.linalg.norm(now[:2] - np.array(start[model][model + "::bob"][0][:2])) > 0.05
+
+
+def test_welded_links_fall_together(joints):
+    sim, _, start = joints
+    now = links(sim, "welded")
+    lower, upper = now["welded::lower"], now["welded::upper"]
+    assert abs(lower[0][2] - 0.1) < 0.01           # resting on the ground
+    assert np.allclose(np.subtract(upper[0], lower[0]), (0, 0, 0.3), atol=1e-3)
+    assert abs(rpy_from_quat(upper[1])[2] - 0.5) < 1e-3
+
+
+def test_a_loop_runs_as_its_nearest_tree(joints):
+    sim, wc, _ = joints
+    assert any("joint ca closes a loop" in w for w in sim.world.warnings)
+    assert wc.get_joint_properties("bc").kind == "revolute"
+    assert len(links(sim, "loop")) == 3
+
+
+def test_apply_joint_effort_lifts_the_slider(joints):
+    """20 N up on the 1 kg block for 0.5 s lifts it from its lower stop to its upper one."""
+    sim, wc, _ = joints
+    assert wc.get_joint_properties("slider::rail").position[0] < -0.19
+    wc.apply_joint_effort("slider::rail", 20.0, 0, int(0.5e9))
+    for _ in range(STEPS_PER_S // 2):
+        sim.step()
+    assert wc.get_joint_properties("slider::rail").position[0] > 0.19
+
+
+def test_each_link_keeps_its_own_friction(joints):
+    """The cart's wheels and chassis grip with their collisions' mu 1, not pybullet's 0.5."""
+    sim, _, _ = joints
+    [cart] = sim.models.get("cart").parts
+    client = cart.body.client
+    for index in range(-1, cart.body.joint_count()):
+        assert client.getDynamicsInfo(cart.body.uid, index)[1] == 1.0
+
+
+def test_reset_world_puts_every_joint_back(joints):
+    sim, _, start = joints
+    sim.reset_world()
+    for model in ("cart", "slider", "ball", "gimbal", "damped"):
+        for name, pose in links(sim, model).items():
+            assert np.allclose(pose[0], start[model][name][0], atol=1e-6), name
+
+
+def test_a_spawned_jointed_model_deleted_and_spawned_again_swings_the_same():
+    sim = Simulation(SimConfig(world="empty", spawn_robot=False))
+    wc = WorldControl(sim)
+    with open(os.path.join(JOINTS, "pendulum.world")) as f:
+        text = f.read()
+    model = text[text.index('<model name="pendulum">'):text.index("</world>")]
+    xml = '<sdf version="1.6">%s</sdf>' % model
+    pose = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+    runs = []
+    for _ in range(2):
+        wc.spawn("swing", xml, pose)
+        out = []
+        for _ in range(STEPS_PER_S):
+            sim.step()
+            out.append(links(sim, "swing")["swing::bob"][0])
+        runs.append(out)
+        wc.delete("swing")
+    sim.close()
+    assert np.allclose(runs[0], runs[1], atol=1e-9)
+    assert abs(runs[0][0][2] - 1.005) < 1e-3          # the hinge at 2 m, the bob 0.995 below
