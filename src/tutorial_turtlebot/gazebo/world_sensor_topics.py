@@ -43,7 +43,6 @@ from .part_times import TIMES
 from .running_topics import RunningTopics
 
 
-
 def resolved(namespace: str, name: str) -> str:
     """``name`` in the plugin's ``namespace`` ("" = the node's: left relative)."""
     return ns_join(namespace, name) if namespace else name
