@@ -207,7 +207,8 @@ def jointed_body(tree: Tree, links: Dict[str, Link], shapes: Dict[str, List[Shap
     for index, (entry, joint) in enumerate(zip(entries[1:], joints)):
         _set_up_joint(handle, index, entry.joint, joint)
     if egl_enabled(client):
-        view_culling.note_drawn_groups(client, body, [s for own in shapes.values() for s in own
+        view_culling.note_drawn_groups(client, body, [s for link in tree.links
+                                                      for s in shapes.get(link, [])
                                                       if not s.collision])
     return body
 
