@@ -4,6 +4,7 @@
 #   make bench  set up, then the benchmark table
 #   make corpus set up, then public Gazebo worlds through the sim (not in make test)
 #   make peer   set up, then gazebo_ros_pkgs' own tests against the sim (not in make test)
+#   make slam / make nav   set up, then the e-Manual's SLAM / Navigation chapter on the sim
 #   make unit / make rostest   the two halves of make test
 #   make plan   what the set-up would install here (nothing is installed)
 # Each target does its own set-up first (tools/setup.sh, idempotent); the test targets also
@@ -59,6 +60,25 @@ peer: setup
 .PHONY: train
 train: setup
 	@$(ROS_ENV) && bash tools/install_extra.sh train && python3 tools/train_stage1.py $(TRAIN_ARGS)
+
+# make slam / make nav: not part of make test. The e-Manual's SLAM and Navigation chapters
+# (doc/slam.md, doc/navigation.md). The navigation extra (gmapping, amcl, map_server, move_base)
+# is built on first use (tools/install_extra.sh nav: catkin_ws/nav, once). make slam: the sim in
+# turtlebot3_world, gmapping, RViz and keyboard teleop in this terminal. make nav: the sim,
+# map_server with MAP (default ~/map.yaml, what map_saver -f ~/map writes), amcl started at the
+# world's spawn, move_base and RViz.
+NAV_ENV := if [ -f $(WS)/nav/devel/setup.bash ]; then source $(WS)/nav/devel/setup.bash; \
+	else $(ROS_ENV); fi
+MAP ?= $(HOME)/map.yaml
+.PHONY: slam nav
+slam: setup
+	@bash tools/install_extra.sh nav && $(NAV_ENV) && roslaunch tutorial_turtlebot \
+	turtlebot3_slam.launch sim:=true teleop:=true model:=$(MODEL)
+
+nav: setup
+	@bash tools/install_extra.sh nav && $(NAV_ENV) && roslaunch tutorial_turtlebot \
+	turtlebot3_navigation.launch sim:=true model:=$(MODEL) map_file:=$(MAP) \
+	initial_pose_x:=-2.0 initial_pose_y:=-0.5 initial_pose_a:=0.0
 
 clean:
 	rm -rf $(WS) .catkin_ws

@@ -4,8 +4,10 @@
 #   bash tools/install_extra.sh ray     # Ray, for learning/ray_actors.py (about 250 MB)
 #   bash tools/install_extra.sh train   # stable-baselines3, CPU-only torch, matplotlib
 #                                       # for tools/train_stage1.py (about 800 MB)
+#   bash tools/install_extra.sh nav     # gmapping, amcl, map_server, move_base, built from
+#                                       # source in catkin_ws/nav (tools/nav_extra/build.sh)
 #
-# Neither is part of tools/setup.sh: the simulator, the lab and the unit tests need neither.
+# None is part of tools/setup.sh: the simulator, the lab and the unit tests need none.
 # Versions are pinned. A second run checks the pins and installs nothing.
 # Exit status: 0 installed (or already there), 2 usage, 3 PyPI unreachable, 1 any other failure.
 #
@@ -32,11 +34,13 @@ RAY_CHECK="import ray"
 TRAIN_CHECK="import torch, stable_baselines3, matplotlib"
 
 usage() {
-    echo "usage: bash tools/install_extra.sh ray|train" >&2
+    echo "usage: bash tools/install_extra.sh ray|train|nav" >&2
     exit 2
 }
 
 [ $# -eq 1 ] || usage
+# nav is no pip extra: ROS packages built from source (tools/nav_extra/build.sh says how).
+[ "$1" != nav ] || exec bash "$ROOT/tools/nav_extra/build.sh"
 case "$1" in
     ray) pins=("${RAY_PINS[@]}"); check="$RAY_CHECK"; nodeps=() ;;
     train) pins=("${TRAIN_PINS[@]}"); check="$TRAIN_CHECK"; nodeps=(--no-deps) ;;

@@ -2,7 +2,8 @@
 """rostest node: spawns and teleports at z 0 onto raised floors through the real /gazebo
 (spawn_floors.test; the world is test/fixtures/worlds/floors/, make_floor_fixtures.py). The
 robot stands on top of each floor, level, and its laser sees no floor; a robot spawned into a
-wall is spawned, with one warning line naming the wall and a z_pos.
+wall is spawned, with one warning line naming the wall and a z_pos; a Waffle Pi spawned inside
+the floor box stands on top of it.
 
 Every wait is on wall time with a limit."""
 import math
@@ -19,6 +20,7 @@ from sim_test_support import WAIT, NodeProcess, Recorder, SimTestCase, pose, wai
 ROBOT = "turtlebot3_burger"
 BURGER = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "urdf",
                       "turtlebot3_burger.urdf")
+WAFFLE_PI = os.path.join(os.path.dirname(BURGER), "turtlebot3_waffle_pi.urdf")
 LEVEL = math.radians(0.5)
 THIN_FLOOR, TRACK = ((12.0, 0.0, 0.0), 0.01), ((19.3, 0.0, math.pi / 2), 0.10)
 
@@ -99,6 +101,28 @@ class SpawnFloorsTest(SimTestCase):
             self.assertIn("z_pos 1.000", line)
         finally:
             self.gz.delete_model(model_name="tb3_2")
+
+    def test_5_spawn_model_of_a_waffle_pi_inside_the_floor_box_stands_on_top(self):
+        """The 0.19 m floor box holds a whole Waffle Pi (0.141 m) asked for z 0: on top, level,
+        still after 1 s of sim time (doc/worlds.md, Floors: inside a solid floor)."""
+        spawn = NodeProcess("spawn_model", "-urdf", "-file", WAFFLE_PI, "-model", "tb3_3",
+                            "-robot_namespace", "tb3_3", "-x", "0", "-y", "0.45", "-z", "0")
+        try:
+            self.assertEqual(spawn.wait(WAIT), 0, spawn.stdout + spawn.stderr)
+            start = self.gz.clock.latest(WAIT).clock
+            placed = self.gz.position("tb3_3")
+            self.assertAlmostEqual(placed[2], 0.19, delta=0.003)
+            self.assertTrue(wait_for(lambda: self.gz.clock.latest(WAIT).clock
+                                     >= start + rospy.Duration(1.0), WAIT))
+            state = self.gz.get_model_state(model_name="tb3_3")
+            self.assertTrue(state.success, state.status_message)
+            here = state.pose.position
+            self.assertLess(math.dist((here.x, here.y, here.z), placed), 0.01)
+            roll, pitch = roll_pitch(state.pose.orientation)
+            self.assertLess(abs(roll), math.radians(1.0))
+            self.assertLess(abs(pitch), math.radians(1.0))
+        finally:
+            self.gz.delete_model(model_name="tb3_3")
 
 
 if __name__ == "__main__":

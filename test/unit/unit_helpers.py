@@ -156,3 +156,26 @@ def rss_kb() -> int:
     """This process's resident memory (KB), after a garbage collection."""
     gc.collect()
     return process_helpers.rss_kb()
+
+
+class RecordingPublisher:
+    """A stand-in for a rospy Publisher (or Subscriber) in tests without a master: it records
+    what is published (``sent``: messages, packed ones unpacked) and has ``connections``
+    subscribers, as the test sets them."""
+
+    def __init__(self, topic, msg_type=None, *args, **kwargs):
+        self.topic = self.name = topic
+        self.msg_type, self.connections, self.sent = msg_type, 0, []
+        self.unregistered = False
+
+    def get_num_connections(self):
+        return self.connections
+
+    def publish(self, msg):
+        self.sent.append(msg)
+
+    def publish_packed(self, packed):
+        self.sent.append(packed.message())
+
+    def unregister(self):
+        self.unregistered = True

@@ -53,6 +53,7 @@ MAIN_DEVEL = os.path.join(ROOT, "catkin_ws", "devel")
 STAMP = os.path.join(WS, "build", "peer_stamp.json")
 SHIM_DIR = os.path.join(WS, "python_shims")
 LOGS = os.path.join(WS, "logs")
+PEER_MODELS = os.path.join(HERE, "models")   # our own stand-ins for models the tests include
 RUN_LIMIT = 300.0    # wall s of one rostest run at most
 STOP_WAIT = 15.0     # wall s a rostest has to end after SIGINT
 SHIMMED_NODES = {"ros_api_checker"}   # test nodes that get the PyYAML shim
@@ -284,11 +285,16 @@ def exe_path(package, name):
 # --- running ------------------------------------------------------------------------------------
 
 def run_env():
-    """os.environ with catkin_ws/peer/devel/setup.bash sourced (it chains catkin_ws/devel)."""
+    """os.environ with catkin_ws/peer/devel/setup.bash sourced (it chains catkin_ws/devel), and
+    PEER_MODELS last on GAZEBO_MODEL_PATH (the models upstream's worlds include that Gazebo
+    does not install: checkerboard_plane)."""
     out = subprocess.run(["bash", "-c", 'source "$1" && env -0', "bash",
                           os.path.join(WS, "devel", "setup.bash")],
                          capture_output=True, check=True).stdout.decode("utf-8", "replace")
-    return dict(item.split("=", 1) for item in out.split("\0") if "=" in item)
+    env = dict(item.split("=", 1) for item in out.split("\0") if "=" in item)
+    env["GAZEBO_MODEL_PATH"] = os.pathsep.join(
+        p for p in (env.get("GAZEBO_MODEL_PATH", ""), PEER_MODELS) if p)
+    return env
 
 
 def run_once(test, env, limit, log_path):

@@ -9,6 +9,10 @@ robot's namespace; for a TurtleBot3 (frame ``camera_rgb_optical_frame``, one ren
   camera/depth/image_raw (32FC1, metres, NaN outside 0.4..5 m), camera/depth/camera_info,
   camera/depth/points (sensor_msgs/PointCloud2, organized, x y z rgb)
 ``camera/image`` and ``camera/camera_info`` are the real robot's names (its cv_camera).
+A camera with a lens <distortion> or another <format> publishes as a world model's
+(world_sensor_topics): the image distorted and in its format's encoding (mono8 for L8 ...),
+CameraInfo's D the plugin's; its jpeg is of that image as image_transport's compressed plugin
+makes it (8 bits a channel; none of a Bayer image), a point cloud's colours only from rgb8.
 A robot's further cameras (SimRobot.cameras) have a CameraPublisher each, with their own names.
 Nothing is rendered or encoded for topics nobody subscribes to.
 """
@@ -17,9 +21,23 @@ from sensor_msgs.msg import CameraInfo, CompressedImage, Image, PointCloud2, Poi
 
 from ..sim.devices.camera import (CameraIntrinsics, depth_image, jpeg_available, jpeg_bytes,
                                   pointcloud_bytes, pointcloud_xyz)
+from ..sim.devices.image_formats import encoding as image_encoding
 from rosgraph.names import ns_join
 
 COMPRESSED_FORMAT = "rgb8; jpeg compressed bgr8"  # as image_transport's compressed plugin
+
+
+def jpeg_source(pixels, encoding: str):
+    """The 8-bit rgb (or grey) image image_transport's compressed plugin encodes of an Image of
+    ``encoding`` and pixels ``pixels`` (16-bit channels: their high byte)."""
+    eight = pixels if pixels.dtype.itemsize == 1 else (pixels >> 8).astype("uint8")
+    return eight[:, :, ::-1] if encoding == "bgr8" else eight
+
+
+def jpeg_format(encoding: str) -> str:
+    """CompressedImage.format of an Image of ``encoding``, as the compressed plugin names it."""
+    return "%s; jpeg compressed %s" % (encoding, "mono8" if encoding.startswith("mono")
+                                       else "bgr8")
 
 
 def camera_info(intrinsics: CameraIntrinsics, width: int, height: int,
@@ -62,8 +80,10 @@ class CameraPublisher:
             return out
         self.image_pubs = pubs(Image, sensor.image_topic, "image")
         self.info_pubs = pubs(CameraInfo, sensor.info_topic, "camera_info")
+        self.encoding, pixel_bytes = image_encoding(sensor.image_format)
         self.jpeg_pubs = (pubs(CompressedImage, sensor.image_topic + "/compressed",
-                               "image/compressed") if jpeg_available() else [])
+                               "image/compressed")
+                          if jpeg_available() and not self.encoding.startswith("bayer") else [])
         self.depth_pubs, self.points_pubs = [], []
         if spec.depth:
             self.depth_pubs = pubs(Image, sensor.depth_image_topic)
@@ -71,13 +91,14 @@ class CameraPublisher:
             self.points_pubs = pubs(PointCloud2, sensor.point_cloud_topic)
         frame = frame_prefix + sensor.frame.lstrip("/")
         self.info = camera_info(self.intrinsics, spec.width, spec.height, frame)
-        self.image = Image(height=spec.height, width=spec.width, encoding="rgb8",
-                           is_bigendian=0, step=3 * spec.width)
+        self.image = Image(height=spec.height, width=spec.width, encoding=self.encoding,
+                           is_bigendian=0, step=pixel_bytes * spec.width)
         self.image.header.frame_id = frame
         self.depth = Image(height=spec.height, width=spec.width, encoding="32FC1",
                            is_bigendian=0, step=4 * spec.width)
         self.depth.header.frame_id = frame
-        self.jpeg = CompressedImage(format=COMPRESSED_FORMAT)
+        self.jpeg = CompressedImage(format=COMPRESSED_FORMAT if self.encoding == "rgb8"
+                                    else jpeg_format(self.encoding))
         self.jpeg.header.frame_id = frame
         self.points = PointCloud2(height=spec.height, width=spec.width, is_bigendian=False,
                                   is_dense=False)
@@ -106,7 +127,8 @@ class CameraPublisher:
                 pub.publish(self.image)
         if jpegs:
             self.jpeg.header.stamp = stamp
-            self.jpeg.data = jpeg_bytes(rgb)
+            self.jpeg.data = jpeg_bytes(rgb if self.encoding == "rgb8"
+                                        else jpeg_source(rgb, self.encoding))
             for pub in jpegs:
                 pub.publish(self.jpeg)
         if depths:
@@ -118,9 +140,12 @@ class CameraPublisher:
             self._publish_points(stamp, rgb, depth, points)
 
     def _publish_points(self, stamp, rgb, depth, pubs) -> None:
-        xyz, colours = pointcloud_xyz(depth, self.intrinsics, organized=True,
-                                      rgb=rgb)
-        data, point_step, fields = pointcloud_bytes(xyz, colours)
+        if self.encoding == "rgb8":
+            data, point_step, fields = pointcloud_bytes(*pointcloud_xyz(
+                depth, self.intrinsics, organized=True, rgb=rgb))
+        else:     # no colours but rgb8's, as a world model's depth camera
+            data, point_step, fields = pointcloud_bytes(pointcloud_xyz(
+                depth, self.intrinsics, organized=True))
         msg = self.points
         msg.header.stamp = stamp
         msg.fields = [PointField(name=name, offset=offset, datatype=PointField.FLOAT32, count=1)

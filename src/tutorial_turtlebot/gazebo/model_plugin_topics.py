@@ -7,20 +7,23 @@ on a world file's or spawned SDF model, or on a robot's URDF:
   hector_gazebo_ros_gps             <topicName> (fix)            sensor_msgs/NavSatFix
                                     <velocityTopicName> (fix_velocity)
                                                                  geometry_msgs/Vector3Stamped
-  gazebo_ros_diff_drive (SDF)       <commandTopic> (cmd_vel) in  geometry_msgs/Twist
-                                    <odometryTopic> (odom)       nav_msgs/Odometry
-                                    /tf odometryFrame -> robotBaseFrame (the node's one /tf)
+  a drive (SDF):                    <commandTopic> (cmd_vel) in  geometry_msgs/Twist
+  gazebo_ros_diff_drive,            <odometryTopic> (odom)       nav_msgs/Odometry
+  _skid_steer_drive, _planar_move,  /tf odometryFrame -> robotBaseFrame (the node's one /tf)
+  _tricycle_drive, hector's         joint_states (a tricycle's publishWheelJointState)
+  _force_based_move                                              sensor_msgs/JointState
 
 Names resolve in the plugin's namespace (model_plugins.namespace_of: its <robotNamespace>,
 else its robot's, else the /gazebo node's; the joint state publisher's default is the model's
 name). The stamp is the sim time of the tick; frames as each plugin fills them (p3d: frame_id
 its <frameName>, child_frame_id its <bodyName>; hector: its <frameId>, default the link's
-name; joint states: none; the diff drive's frames prefixed by its namespace, as a robot's). The diff
-drive's commands reach the loop as a robot's do (the node's queue_in_loop, the latest only),
-its odometry and TF at each control tick as a robot's (robot_topics: publishTf false none at
-all, publishOdomTF false no TF). A topic nobody subscribes to costs nothing: nothing is read. A
-reading that fails is skipped, with one line at most every OUTPUT_ERROR_PERIOD wall seconds
-per plugin.
+name; joint states: none; a drive's frames prefixed by its namespace, as a robot's). A
+drive's commands reach the loop as a robot's do (the node's queue_in_loop, the latest only;
+linear.y too, which a planar or force-based move reads), its odometry and TF at each of its
+odometry ticks as a robot's (robot_topics: the diff drive's publishTf false none at all, a
+drive's TF as its plugin says, its pose covariance the plugin's). A topic nobody subscribes to
+costs nothing: nothing is read. A reading that fails is skipped, with one line at most every
+OUTPUT_ERROR_PERIOD wall seconds per plugin.
 """
 import math
 
@@ -29,7 +32,7 @@ from geometry_msgs.msg import Twist, Vector3Stamped
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, NavSatFix
 
-from .impl.packed_messages import PackedOdometry, PackedTransform
+from .impl.packed_messages import PackedJointState, PackedOdometry, PackedTransform
 from .part_times import TIMES
 from .running_topics import RunningTopics
 from .robot_topics import POSE_COVARIANCE_DIAGONAL, frame_prefix
@@ -161,18 +164,24 @@ class _HectorGpsTopic(_PluginTopic):
             self.velocity_pub.publish(self.velocity)
 
 
-class _DiffDriveTopic(_PluginTopic):
-    """An SDF model's gazebo_ros_diff_drive: cmd_vel in, odom and the odom TF out."""
+class _DriveTopic(_PluginTopic):
+    """An SDF model's drive (model_drives: DiffDriveRunner, DriveRunner): cmd_vel in, odom
+    and the odom TF out (and a tricycle's wheel joint states)."""
 
     def __init__(self, plugin, make_publisher, node=None):
         super().__init__(plugin, make_publisher, node)
         spec = plugin.spec
         prefix = frame_prefix(plugin.namespace)
-        self.pub = (self.advertise(spec.odometry_topic, Odometry) if spec.publish_tf
-                    else None)
+        self.pub = (self.advertise(spec.odometry_topic, Odometry)
+                    if plugin.publishes_odometry else None)
+        self.joints_pub = (self.advertise("joint_states", JointState)
+                           if plugin.joint_names else None)
+        self.joints_packed = PackedJointState("", list(plugin.joint_names))
         odom_frame = prefix + spec.odometry_frame.lstrip("/")
         base_frame = prefix + spec.robot_base_frame.lstrip("/")
-        self.odom_packed = PackedOdometry(odom_frame, base_frame, POSE_COVARIANCE_DIAGONAL)
+        self.odom_packed = PackedOdometry(odom_frame, base_frame,
+                                          getattr(spec, "pose_covariance",
+                                                  POSE_COVARIANCE_DIAGONAL))
         self.tf_packed = PackedTransform(odom_frame, base_frame)
         self.subscriber = rospy.Subscriber(resolved(plugin.namespace, spec.command_topic), Twist,
                                            self._on_cmd_vel, queue_size=1)
@@ -188,18 +197,30 @@ class _DiffDriveTopic(_PluginTopic):
             rospy.logwarn_throttle(5.0, "%s ignored: NaN or infinite field (linear.x=%r, "
                                    "angular.z=%r)" % (self.subscriber.name, linear, angular))
             return
-        self.node.queue_in_loop(lambda: self.apply_command(linear, angular),
+        lateral = msg.linear.y if self.plugin.kind == "drive" else 0.0
+        if not math.isfinite(lateral):     # a planar or force-based move's linear.y
+            rospy.logwarn_throttle(5.0, "%s ignored: NaN or infinite linear.y (%r)"
+                                   % (self.subscriber.name, lateral))
+            return
+        self.node.queue_in_loop(lambda: self.apply_command(linear, angular, lateral),
                                 key=("cmd_vel", self.plugin.name))
 
-    def apply_command(self, linear: float, angular: float) -> None:
+    def apply_command(self, linear: float, angular: float, lateral: float = 0.0) -> None:
         """In the loop: the command to the drive, held until the next."""
-        problems = self.plugin.command(linear, angular)
+        problems = self.plugin.command(linear, angular, lateral)
         if problems:
             rospy.logwarn_throttle(5.0, "cmd_vel beyond %s's limits: %s"
                                    % (self.plugin.model.name, "; ".join(problems)))
 
     def publish(self, stamp) -> None:
-        if self.pub is None:       # publishTf false: no odometry at all (Gazebo)
+        if self.joints_pub is not None and self.joints_pub.get_num_connections() > 0:
+            TIMES.switch("sensors")
+            names, positions, velocities = self.plugin.joint_states()
+            self.joints_packed.set_stamp(stamp.secs, stamp.nsecs)
+            self.joints_packed.write(positions, velocities)
+            self.joints_pub.publish_packed(self.joints_packed)
+        # publishTf false: no odometry at all (Gazebo); a drive's odometry at its own rate
+        if self.pub is None or not self.plugin.odometry_due:
             return
         tf_pub = self.node.tf_pub if self.node is not None else None
         wants_odom = self.pub.get_num_connections() > 0
@@ -220,7 +241,7 @@ class _DiffDriveTopic(_PluginTopic):
 
 
 TOPICS = {"p3d": _P3dTopic, "joint_states": _JointStateTopic, "hector_imu": _HectorImuTopic,
-          "hector_gps": _HectorGpsTopic, "diff_drive": _DiffDriveTopic}
+          "hector_gps": _HectorGpsTopic, "diff_drive": _DriveTopic, "drive": _DriveTopic}
 
 
 class ModelPluginTopics:
@@ -232,7 +253,7 @@ class ModelPluginTopics:
     def __init__(self, sim, make_publisher, node=None):
         """``sim``: the Simulation; ``make_publisher(topic, type, queue_size=1)``: the node's
         (non-blocking) publishers; ``node``: the SimNode, whose ``tf_pub`` (/tf) and
-        ``queue_in_loop`` a diff drive uses."""
+        ``queue_in_loop`` a drive uses."""
         self.sim = sim
         self.make_publisher = make_publisher
         self.node = node

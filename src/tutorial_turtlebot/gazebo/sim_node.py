@@ -264,9 +264,9 @@ class SimNode:
             raise failed
 
     def _sync_tf(self) -> None:
-        """/tf is advertised while a robot with a drive plugin, or an SDF model with a diff
-        drive, is in the world (the transform broadcaster of gazebo_ros_diff_drive, whatever
-        its publishOdomTF), and not without."""
+        """/tf is advertised while a robot or an SDF model with a drive plugin is in the world
+        (the transform broadcaster of gazebo_ros_diff_drive, whatever its publishOdomTF), and
+        not without."""
         wanted = (any(robot.drive_plugin for robot in self.sim.robots.values())
                   or bool(self.sim.model_plugins.drives(self.sim.time_ns)))
         if wanted and self.tf_pub is None:

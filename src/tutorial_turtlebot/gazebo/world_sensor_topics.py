@@ -1,5 +1,6 @@
 """The ROS topics of the world models' sensors (sim/world/world_sensors), as gazebo_ros' sensor
-plugins advertise them on a world file's (or a spawned SDF model's) link:
+plugins advertise them on a world file's (or a spawned SDF model's) link, or a URDF robot's
+(those SimRobot does not make: robot_topics publishes its lasers and cameras):
 
   gazebo_ros_laser, gpu_laser  <topicName> (/world)             sensor_msgs/LaserScan
   gazebo_ros_range             <topicName> (/range)             sensor_msgs/Range
@@ -13,6 +14,7 @@ plugins advertise them on a world file's (or a spawned SDF model's) link:
                                <cameraName>/depth/image_raw (32FC1 m or 16UC1 mm),
                                <cameraName>/depth/camera_info, <cameraName>/points
                                (PointCloud2, organized, x y z rgb), all of one stamp
+  gazebo_ros_openni_kinect     the same topics, depths beyond pointCloudCutoffMax left out too
   gazebo_ros_multicamera       <cameraName>/left/image_raw, .../left/camera_info, and right's,
                                of one stamp
   gazebo_ros_bumper            <bumperTopicName> (bumper_states)  gazebo_msgs/ContactsState:
@@ -21,8 +23,11 @@ plugins advertise them on a world file's (or a spawned SDF model's) link:
                                sensor_msgs/Imu, frame_id <frameName> as written
 
 Names resolve in the plugin's <robotNamespace>, else in the /gazebo node's namespace (the root,
-as gzserver's). frame_id is the plugin's <frameName> as written, without a leading "/"
-(default "world"; a camera's: empty); the stamp is the sim time of the tick. A topic nobody
+as gzserver's); a robot's in its plugin's <robotNamespace>, else in the spawn's namespace
+(robot_sensors). frame_id is the plugin's <frameName> as written, without a leading "/"
+(default "world"; a camera's: empty); a robot's is a link of it (its sensor's by default),
+prefixed as robot_topics prefixes its frames ("tb3_0/front_link"). The stamp is the sim time
+of the tick. A topic nobody
 subscribes to costs nothing: no ray is cast, no image rendered. A sensor's reading that fails
 is skipped, with one line at most every OUTPUT_ERROR_PERIOD wall seconds per sensor.
 """
@@ -40,12 +45,19 @@ from std_msgs.msg import Empty
 from ..sim.devices.camera import pointcloud_bytes, pointcloud_xyz
 from .camera_publisher import camera_info
 from .part_times import TIMES
+from .robot_topics import frame_prefix
 from .running_topics import RunningTopics
 
 
 def resolved(namespace: str, name: str) -> str:
     """``name`` in the plugin's ``namespace`` ("" = the node's: left relative)."""
     return ns_join(namespace, name) if namespace else name
+
+
+def frame_id(sensor, frame: str) -> str:
+    """The header's frame_id of ``frame`` (a spec's) of a RunningSensor: a robot's sensor's
+    prefixed with its robot's namespace (robot_topics.frame_prefix), a world model's as it is."""
+    return frame_prefix(sensor.namespace) + frame.lstrip("/") if sensor.namespace else frame
 
 
 class _SensorTopic:
@@ -78,7 +90,7 @@ class _LaserTopic(_SensorTopic):
                              angle_increment=laser.angle_increment, time_increment=0.0,
                              scan_time=0.0, range_min=laser.range_min,
                              range_max=laser.range_max, intensities=[0.0] * laser.samples)
-        self.msg.header.frame_id = spec.frame
+        self.msg.header.frame_id = frame_id(sensor, spec.frame)
 
     def publish(self, stamp) -> None:
         if self.pub.get_num_connections() == 0:
@@ -98,7 +110,7 @@ class _RangeTopic(_SensorTopic):
         self.pub = self.advertise(resolved(spec.robot_namespace, spec.topic), Range)
         self.msg = Range(radiation_type=sensor.radiation_type, field_of_view=spec.fov,
                          min_range=spec.rays.range_min, max_range=spec.rays.range_max)
-        self.msg.header.frame_id = spec.frame
+        self.msg.header.frame_id = frame_id(sensor, spec.frame)
 
     def publish(self, stamp) -> None:
         if self.pub.get_num_connections() == 0:
@@ -115,7 +127,7 @@ class _BlockLaserTopic(_SensorTopic):
         spec = sensor.spec
         self.pub = self.advertise(resolved(spec.robot_namespace, spec.topic), PointCloud)
         self.msg = PointCloud()
-        self.msg.header.frame_id = spec.frame
+        self.msg.header.frame_id = frame_id(sensor, spec.frame)
 
     def publish(self, stamp) -> None:
         if self.pub.get_num_connections() == 0:
@@ -138,7 +150,7 @@ class _CameraTopic(_SensorTopic):
         base = camera_base(spec)
         self.image_pub = self.advertise(resolved(base, spec.image_topic), Image)
         self.info_pub = self.advertise(resolved(base, spec.info_topic), CameraInfo)
-        self.info, self.image = camera_messages(sensor)
+        self.info, self.image = camera_messages(sensor, frame_id(sensor, spec.frame))
 
     def publish(self, stamp) -> None:
         if self.info_pub.get_num_connections() > 0:
@@ -185,10 +197,10 @@ class _DepthCameraTopic(_CameraTopic):
         self.depth = Image(height=camera.height, width=camera.width, is_bigendian=0,
                            encoding="16UC1" if spec.depth_16bit else "32FC1",
                            step=(2 if spec.depth_16bit else 4) * camera.width)
-        self.depth.header.frame_id = spec.frame
+        self.depth.header.frame_id = frame_id(sensor, spec.frame)
         self.points = PointCloud2(height=camera.height, width=camera.width,
                                   is_bigendian=False, is_dense=False)
-        self.points.header.frame_id = spec.frame
+        self.points.header.frame_id = frame_id(sensor, spec.frame)
 
     def publish(self, stamp) -> None:
         for pub in (self.info_pub, self.depth_info_pub):
@@ -209,15 +221,16 @@ class _DepthCameraTopic(_CameraTopic):
             self.image_pub.publish(self.image)
         if depth:
             self.depth.header.stamp = stamp
-            self.depth.data = depth_values(metres, spec.point_cloud_cutoff,
-                                           spec.depth_16bit).tobytes()
+            self.depth.data = depth_values(metres, spec.point_cloud_cutoff, spec.depth_16bit,
+                                           spec.point_cloud_cutoff_max).tobytes()
             self.depth_pub.publish(self.depth)
         if points:
             self._publish_points(stamp, pixels, metres)
 
     def _publish_points(self, stamp, pixels, metres) -> None:
         rgb = pixels if self.sensor.encoding == "rgb8" else None
-        cutoff = (self.sensor.spec.point_cloud_cutoff, math.inf)
+        spec = self.sensor.spec
+        cutoff = (spec.point_cloud_cutoff, spec.point_cloud_cutoff_max)
         found = pointcloud_xyz(metres, self.sensor.intrinsics, cutoff=cutoff, organized=True,
                                rgb=rgb)
         data, point_step, fields = pointcloud_bytes(*found) if rgb is not None else (
@@ -243,7 +256,7 @@ class _MultiCameraTopic(_SensorTopic):
             base = camera_base(spec)
             pubs = (self.advertise(resolved(base, spec.image_topic), Image),
                     self.advertise(resolved(base, spec.info_topic), CameraInfo))
-            self.outputs.append(pubs + camera_messages(camera))
+            self.outputs.append(pubs + camera_messages(camera, frame_id(sensor, spec.frame)))
 
     def publish(self, stamp) -> None:
         for _, info_pub, info, _ in self.outputs:
@@ -272,7 +285,7 @@ class _BumperTopic(_SensorTopic):
         spec = sensor.spec
         self.pub = self.advertise(resolved(spec.robot_namespace, spec.topic), ContactsState)
         self.msg = ContactsState()
-        self.msg.header.frame_id = spec.frame
+        self.msg.header.frame_id = frame_id(sensor, spec.frame)
 
     def publish(self, stamp) -> None:
         if self.pub.get_num_connections() == 0:
@@ -312,7 +325,7 @@ class _ImuSensorTopic(_SensorTopic):
         spec = sensor.spec
         self.pub = self.advertise(resolved(spec.robot_namespace, spec.topic), Imu)
         self.msg = Imu()
-        self.msg.header.frame_id = spec.frame
+        self.msg.header.frame_id = frame_id(sensor, spec.frame)
         variance = spec.gaussian_noise ** 2
         diagonal = [variance, 0.0, 0.0, 0.0, variance, 0.0, 0.0, 0.0, variance]
         self.msg.orientation_covariance = list(diagonal)
@@ -340,21 +353,24 @@ def camera_base(spec) -> str:
         spec.robot_namespace)
 
 
-def camera_messages(camera):
-    """(CameraInfo, Image) of a CameraRunner, their fixed fields filled."""
-    spec, size = camera.spec, camera.camera_spec
-    info = camera_info(camera.intrinsics, size.width, size.height, spec.frame)
+def camera_messages(camera, frame: str):
+    """(CameraInfo, Image) of a CameraRunner in ``frame``, their fixed fields filled."""
+    size = camera.camera_spec
+    info = camera_info(camera.intrinsics, size.width, size.height, frame)
     image = Image(height=size.height, width=size.width, encoding=camera.encoding,
                   is_bigendian=0, step=camera.pixel_bytes * size.width)
-    image.header.frame_id = spec.frame
+    image.header.frame_id = frame
     return info, image
 
 
-def depth_values(metres, cutoff: float, sixteen: bool):
-    """gazebo_ros_depth_camera's depth image: m (float32), NaN at or inside ``cutoff``; or
-    with ``sixteen`` mm (uint16, 0 there; past 65.535 m it wraps, as the plugin's cast)."""
+def depth_values(metres, cutoff: float, sixteen: bool, cutoff_max: float = math.inf):
+    """gazebo_ros_depth_camera's depth image: m (float32), NaN at or inside ``cutoff`` (and,
+    openni_kinect's, at or beyond ``cutoff_max``); or with ``sixteen`` mm (uint16, 0 there;
+    past 65.535 m it wraps, as the plugin's cast)."""
     with np.errstate(invalid="ignore"):
         seen = metres > cutoff
+        if cutoff_max < math.inf:
+            seen &= metres < cutoff_max
     if not sixteen:
         return np.where(seen, metres, np.float32(np.nan)).astype(np.float32)
     finite = np.where(seen & np.isfinite(metres), metres * 1000.0, 0.0)

@@ -11,39 +11,20 @@ from tutorial_turtlebot.gazebo.robot_topics import RobotTopics
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world.world_control import WorldControl
 
-from unit_helpers import at, run
+from unit_helpers import RecordingPublisher, at, run
 import unit_paths
 
 FIXTURE = Path(unit_paths.FIXTURES) / "two_lasers"
 
 
-class FakeEndpoint:
-    """A publisher or subscriber that records what is sent; ``connections`` subscribers."""
-
-    def __init__(self, name, *args, **kwargs):
-        self.name, self.sent, self.connections = name, [], 0
-
-    def get_num_connections(self):
-        return self.connections
-
-    def publish(self, msg):
-        self.sent.append(msg)
-
-    def publish_packed(self, packed):
-        self.sent.append(packed.message())
-
-    def unregister(self):
-        pass
-
-
 @pytest.fixture
 def twin(monkeypatch):
-    monkeypatch.setattr(robot_topics.rospy, "Subscriber", FakeEndpoint)
+    monkeypatch.setattr(robot_topics.rospy, "Subscriber", RecordingPublisher)
     sim = Simulation(SimConfig(world=str(FIXTURE / "two_lasers.world"), spawn_robot=False))
     WorldControl(sim).spawn("twin", (FIXTURE / "two_lasers.urdf").read_text(), at(0.0, 0.0),
                             kind="urdf", robot_namespace="twin")
     run(sim, 0.3)
-    topics = RobotTopics(sim.robots["twin"], FakeEndpoint, FakeEndpoint("/tf"))
+    topics = RobotTopics(sim.robots["twin"], RecordingPublisher, RecordingPublisher("/tf"))
     yield topics, {pub.name: pub for pub in topics._advertised}
     sim.close()
 

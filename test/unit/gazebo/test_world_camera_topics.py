@@ -16,24 +16,17 @@ from tutorial_turtlebot.gazebo.world_sensor_topics import WorldSensorTopics, dep
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world.world_sensors import WORLD_SENSORS
 
+from unit_helpers import RecordingPublisher
 import unit_paths
 
 FIXTURE = Path(unit_paths.ROOT) / "test" / "fixtures" / "world_cameras" / "world_cameras.world"
 
 
-class FakePublisher:
-    def __init__(self, topic, msg_type, queue_size):
-        self.topic, self.msg_type, self.connections, self.sent = topic, msg_type, 0, []
-        self.unregistered = False
-
-    def get_num_connections(self):
-        return self.connections
+class StampedPublisher(RecordingPublisher):
+    """Records (header stamp, message) pairs."""
 
     def publish(self, msg):
         self.sent.append((msg.header.stamp, msg))
-
-    def unregister(self):
-        self.unregistered = True
 
 
 class FakeSubscriber:
@@ -51,7 +44,7 @@ def world():
     made, subs = [], []
 
     def make(topic, msg_type, queue_size=1):
-        made.append(FakePublisher(topic, msg_type, queue_size))
+        made.append(StampedPublisher(topic, msg_type, queue_size))
         return made[-1]
 
     def subscribe(topic, msg_type, callback, queue_size=1):
@@ -154,3 +147,7 @@ def test_depth_values_are_the_plugins_nan_or_millimetres():
     floats = depth_values(metres, 0.4, False)
     assert np.isnan(floats[0, 0]) and floats[0, 1] == 2.0 and floats[0, 2] == math.inf
     assert depth_values(metres, 0.4, True).tolist() == [[0, 2000, 0]]
+    # openni_kinect's: NaN (0) at or beyond its pointCloudCutoffMax too
+    kinect = depth_values(metres, 0.4, False, 5.0)
+    assert np.isnan(kinect[0, 0]) and kinect[0, 1] == 2.0 and np.isnan(kinect[0, 2])
+    assert depth_values(metres, 0.4, True, 1.5).tolist() == [[0, 0, 0]]

@@ -13,24 +13,11 @@ from tutorial_turtlebot.gazebo.world_sensor_topics import WorldSensorTopics
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world.world_sensors import WORLD_SENSORS
 
+from unit_helpers import RecordingPublisher
 import unit_paths
 
 FIXTURE = (Path(unit_paths.ROOT) / "test" / "fixtures" / "world_contacts"
            / "world_contacts.world")
-
-
-class FakePublisher:
-    def __init__(self, topic, msg_type, queue_size):
-        self.topic, self.msg_type, self.connections, self.sent = topic, msg_type, 0, []
-
-    def get_num_connections(self):
-        return self.connections
-
-    def publish(self, msg):
-        self.sent.append(msg)
-
-    def unregister(self):
-        pass
 
 
 @pytest.fixture(scope="module")
@@ -39,7 +26,7 @@ def world():
     made = {}
 
     def make(topic, msg_type, queue_size=1):
-        made[topic] = FakePublisher(topic, msg_type, queue_size)
+        made[topic] = RecordingPublisher(topic, msg_type, queue_size)
         return made[topic]
     topics = WorldSensorTopics(sim, make)
     yield sim, topics, made

@@ -15,24 +15,17 @@ from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world.world_control import WorldControl
 from tutorial_turtlebot.sim.world.world_sensors import WORLD_SENSORS
 
+from unit_helpers import RecordingPublisher
 import unit_paths
 
 FIXTURE = Path(unit_paths.ROOT) / "test" / "fixtures" / "world_sensors" / "world_sensors.world"
 
 
-class FakePublisher:
-    def __init__(self, topic, msg_type, queue_size):
-        self.topic, self.msg_type, self.connections, self.sent = topic, msg_type, 0, []
-        self.unregistered = False
-
-    def get_num_connections(self):
-        return self.connections
+class StampedPublisher(RecordingPublisher):
+    """Records (header stamp, message) pairs."""
 
     def publish(self, msg):
         self.sent.append((msg.header.stamp, msg))
-
-    def unregister(self):
-        self.unregistered = True
 
 
 @pytest.fixture
@@ -41,7 +34,7 @@ def world():
     made = []
 
     def make(topic, msg_type, queue_size=1):
-        made.append(FakePublisher(topic, msg_type, queue_size))
+        made.append(StampedPublisher(topic, msg_type, queue_size))
         return made[-1]
     topics = WorldSensorTopics(sim, make)
     yield sim, topics, made

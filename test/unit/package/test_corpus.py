@@ -25,7 +25,11 @@ KEPT_OUT = [("aws-robotics/aws-robomaker-hospital-world", ""),
             ("aws-robotics/aws-robomaker-small-house-world", ""),
             ("aws-robotics/aws-robomaker-bookstore-world", ""),
             ("gazebosim/gazebo-classic", "worlds/cafe.world"),
-            ("", "gazebo_models_worlds_collection")]
+            ("", "gazebo_models_worlds_collection"),
+            ("clearpathrobotics/cpr_gazebo", ""),
+            ("husarion/gazebo_worlds", ""),
+            ("larics/larics_gazebo_worlds", ""),
+            ("PX4/PX4-SITL_gazebo-classic", "")]
 
 
 @pytest.fixture
@@ -33,9 +37,9 @@ def manifest():
     return fetch_corpus.load_manifest()
 
 
-def test_manifest_names_at_least_25_worlds_with_their_sources(manifest):
+def test_manifest_names_at_least_50_worlds_with_their_sources(manifest):
     worlds = manifest["worlds"]
-    assert len(worlds) >= 25
+    assert len(worlds) >= 50
     for world in worlds:
         assert fetch_corpus.HEX40.match(world["commit"]), world["name"]
         assert world["path"].endswith((".world", ".sdf", ".model")), world["name"]
@@ -43,7 +47,7 @@ def test_manifest_names_at_least_25_worlds_with_their_sources(manifest):
         assert env["GAZEBO_MODEL_PATH"] == os.path.join("/corpus", world["name"], "models")
         for source in list(world["models"].values()) + list(world.get("extra", {}).values()):
             assert fetch_corpus.HEX40.match(manifest["repos"][source["repo"]])
-    assert len({w["repo"] for w in worlds}) >= 8
+    assert len({w["repo"] for w in worlds}) >= 20
 
 
 def test_manifest_leaves_out_the_worlds_kept_for_acceptance(manifest):

@@ -29,7 +29,7 @@ ROOT = unit_paths.ROOT
 
 # Top-level folders and files of the repository that a path may start with.
 ROOT_DIRS = ("doc", "src", "test", "tools", "bench", "urdf", "worlds", "launch", "scripts",
-             "models", "rviz", "msgs", "ros_shims", "env-hooks")
+             "models", "rviz", "msgs", "ros_shims", "env-hooks", "config")
 SCANNED_SUFFIXES = (".py", ".md", ".rst", ".launch", ".test", ".urdf", ".world", ".sdf", ".xml",
                     ".sh", ".txt", ".in", ".cmake", ".rviz", ".cfg", ".config", ".xacro")
 SCANNED_NAMES = ("Makefile", "CMakeLists.txt", "package.xml", "run")

@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 import pytest
 import yaml
 
-from tutorial_turtlebot.sim.files.sdf.world_catalogue import world_from_command_line
+from tutorial_turtlebot.sim.files.sdf.world_catalogue import WORLD_DIR, world_from_command_line
 from tutorial_turtlebot.gazebo.single_instance import running_simulator
 import unit_paths
 
@@ -120,6 +120,21 @@ def test_relative_world_files_resolve_where_the_command_was_typed():
     assert world_from_command_line("turtlebot3_house", environ) == "turtlebot3_house"
     assert world_from_command_line("~/my.world", environ) == "~/my.world"  # the loader expands
     assert world_from_command_line("my.world", {}) == os.path.join(os.getcwd(), "my.world")
+
+
+def test_a_world_not_where_the_command_was_typed_is_looked_for_as_gzserver_does(tmp_path):
+    environ = {"PWD": str(tmp_path / "elsewhere")}
+    # gazebo_ros's empty_world.launch names worlds/empty.world: Gazebo's own, here the package's
+    assert world_from_command_line("worlds/empty.world", environ) == os.path.join(
+        WORLD_DIR, "empty.world")
+    (tmp_path / "res" / "worlds").mkdir(parents=True)
+    (tmp_path / "res" / "worlds" / "arena.world").write_text("<sdf/>")
+    environ["GAZEBO_RESOURCE_PATH"] = "/nowhere:%s" % (tmp_path / "res")
+    assert world_from_command_line("worlds/arena.world", environ) == str(
+        tmp_path / "res" / "worlds" / "arena.world")
+    # found nowhere: the path from where the command was typed, for the error to name
+    assert world_from_command_line("worlds/nothing.world", environ) == str(
+        tmp_path / "elsewhere" / "worlds" / "nothing.world")
 
 
 def test_no_master_means_no_running_simulator():

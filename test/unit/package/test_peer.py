@@ -303,11 +303,43 @@ def test_format_table_one_row_per_test_and_the_peer_line():
     assert lines[0] == "make peer, today"
     assert "| set_model_state_test | active | 10 | 10 | 170 |  |" in lines
     assert "| camera | display | 1 | 0 | 31 | cameraSubscribeTest: a / b |" in lines
-    assert lines[-1] == "peer: 1 passed, 1 failed"
+    assert lines[-1] == "peer: 1 passed, 0 fail as on Gazebo, 1 failed"
     # one failed run of ten fails the test
     text = peer_plan.format_table([(sms, [good] * 9 + [bad])], "h")
     assert "| set_model_state_test | active | 10 | 9 | 184 | cameraSubscribeTest: a / b |" in text
-    assert text.endswith("peer: 0 passed, 1 failed")
+    assert text.endswith("peer: 0 passed, 0 fail as on Gazebo, 1 failed")
+
+
+EXTRA_TOPIC = ("test_extra_topics: Items in the first set but not the second: "
+               "'/gazebo/performance_metrics'")
+
+
+def test_a_test_that_fails_as_on_gazebo_counts_apart_only_with_that_failure_alone():
+    net = peer_plan.PeerTest("ros_network_default", "gazebo_ros", "n.test", 1, "active")
+    known = peer_plan.RunResult(False, 30.0, EXTRA_TOPIC, (EXTRA_TOPIC,))
+    text = peer_plan.format_table([(net, [known])], "h")
+    assert ("| ros_network_default | active | 1 | 0 | 30 | as upstream (Gazebo 11.2 and later"
+            in text)
+    assert text.endswith("peer: 0 passed, 1 fail as on Gazebo, 0 failed")
+    # a second failure beside it, another extra topic, or another test: a failure
+    for results in ([peer_plan.RunResult(False, 30.0, EXTRA_TOPIC,
+                                         (EXTRA_TOPIC, "test_services: a service missing"))],
+                    [peer_plan.RunResult(False, 30.0, EXTRA_TOPIC + ", '/x'")]):
+        assert peer_plan.format_table([(net, results)], "h").endswith(
+            "0 fail as on Gazebo, 1 failed")
+    cam = peer_plan.PeerTest("camera", "gazebo_plugins", "c.test", 1, "display")
+    assert peer_plan.as_upstream("camera", [known]) is None
+    assert peer_plan.format_table([(cam, [known])], "h").endswith("1 failed")
+
+
+def test_run_result_keeps_every_xml_failure_or_the_fatal_line_alone():
+    xml = ('<testsuite><testcase name="a"><failure message="one"/></testcase>'
+           '<testcase name="b"><error message="two"/></testcase></testsuite>')
+    assert peer_plan.run_result(1, FAIL, [xml], 1.0).failures == ("a: one", "b: two")
+    fatal = "[FATAL] [1.0]: gazebo: world file not found: w.world\n" + FAIL
+    result = peer_plan.run_result(1, fatal, [xml], 1.0)
+    assert result.failures == (result.failure,) == ("FATAL: gazebo: world file not found: "
+                                                    "w.world",)
 
 
 # --- the PyYAML shim and the tree check -------------------------------------------------------

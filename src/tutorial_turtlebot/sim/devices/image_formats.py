@@ -7,13 +7,15 @@ renderer draws. No ROS.
 (is_bigendian 0); grey (L8, L16) is the BT.601 luma of the colour; a Bayer image keeps, for each
 pixel, the one channel its place in the 2 x 2 pattern names (the first letters: row 0).
 A format Gazebo does not render for gazebo_ros is drawn R8G8B8 and labelled bgr8, as
-camera_utils labels it.
+camera_utils labels it. ``CameraOutput``: a camera's rendered image made its published pixels
+(the lens' distortion, then the format), for world models' cameras and robots' alike.
 """
-from typing import Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 
-from ..files.plugins.camera_types import IMAGE_FORMATS, UNKNOWN_FORMAT
+from ..files.plugins.camera_types import IMAGE_FORMATS, UNKNOWN_FORMAT, LensDistortion
+from .lens_distortion import DistortionMap
 
 LUMA = np.array([0.299, 0.587, 0.114])
 CHANNEL = {"R": 0, "G": 1, "B": 2}
@@ -52,3 +54,26 @@ def _bayer(rgb: np.ndarray, pattern: str) -> np.ndarray:
         row, col = divmod(index, 2)
         out[row::2, col::2] = rgb[row::2, col::2, CHANNEL[letter]]
     return out
+
+
+class CameraOutput:
+    """What a ``width`` x ``height`` px camera publishes of the rgb8 image the renderer draws:
+    distorted by ``lens`` (None or no terms: not; its DistortionMap made at the first image),
+    then ``converted`` to ``image_format``. ``plain``: the image is published as drawn."""
+
+    def __init__(self, image_format: str, lens: Optional[LensDistortion], width: int,
+                 height: int):
+        self.image_format = image_format
+        self.encoding, self.pixel_bytes = encoding(image_format)
+        self.lens = None if lens is None or lens.is_identity else lens
+        self.size = (width, height)
+        self.plain = self.lens is None and image_format == "R8G8B8"
+        self._map: Optional[DistortionMap] = None
+
+    def pixels(self, rgb: np.ndarray) -> np.ndarray:
+        """The published pixels of the drawn ``rgb`` (uint8, height x width x 3)."""
+        if self.lens is not None:
+            if self._map is None:
+                self._map = DistortionMap(self.lens, *self.size)
+            rgb = self._map.apply(rgb)
+        return converted(rgb, self.image_format)

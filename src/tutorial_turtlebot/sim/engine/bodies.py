@@ -289,6 +289,17 @@ class Body:
                                           force=float(max_force))
         self._joint_set(index, make=True)["motor"] = (float(velocity), float(max_force))
 
+    def set_joint_target(self, index: int, position: float, max_force: float,
+                         position_gain: float = 0.1, velocity_gain: float = 1.0) -> None:
+        """Drive one-axis joint ``index`` to ``position`` (rad or m) with at most ``max_force``
+        (N m or N), pybullet's position motor of those gains (a drive's steering joint, a
+        braked wheel); noted as a motor of rate 0 (restore_joints puts the built one back)."""
+        self.client.setJointMotorControl2(self.uid, index, pybullet.POSITION_CONTROL,
+                                          targetPosition=float(position), targetVelocity=0.0,
+                                          force=float(max_force), positionGain=position_gain,
+                                          velocityGain=velocity_gain)
+        self._joint_set(index, make=True)["motor"] = (0.0, float(max_force))
+
     def restore_joints(self) -> None:
         """Every joint's damping, stops and motor as built (a body parked for reuse)."""
         client = self.client

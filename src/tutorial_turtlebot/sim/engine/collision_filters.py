@@ -35,11 +35,22 @@ def forget_client(client: Client) -> None:
 def set_filter(client: Client, body: int, link: int, group: int, mask: int) -> None:
     """Give collider (``body``, ``link``) the collision ``group`` and ``mask`` (pybullet's
     setCollisionFilterGroupMask, which also drops the collider's contacts), and remember it:
-    a collider keeps the place of the first filter it was given."""
+    a collider keeps the place of the first filter it was given. A link with no collision
+    shape has no collider: nothing is done (pybullet's call on one leaves a state that
+    restoreState then refuses: "didn't find bodyUniqueId")."""
+    if not has_collider(client, body, link):
+        return
     client.setCollisionFilterGroupMask(body, link, group, mask)
     filters = client.filters
     if filters is not None:
         filters[(body, link)] = (group, mask)
+
+
+def has_collider(client: Client, body: int, link: int) -> bool:
+    """Whether link ``link`` of ``body`` (-1: its base) has a collision shape: pybullet gives
+    one without a box of a single point (getCollisionShapeData would print its failure)."""
+    low, high = client.getAABB(body, link)
+    return low != high
 
 
 def forget_body(client: Client, body: int) -> None:

@@ -14,7 +14,7 @@ Joint limits, damping and friction (a velocity motor of that force holding it, a
 models' joints are held) are set as the file says; a ball joint is pybullet's spherical one.
 Units: metres, kilograms, kg m^2; poses ((x, y, z), (qx, qy, qz, qw)) in the world frame.
 """
-from typing import Dict, List, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -110,6 +110,9 @@ def _set_up_link(client: Client, body: int, index: int, moments, shapes: Sequenc
     collisions = [s for s in shapes if s.collision]
     mu = collisions[0].mu if collisions else WORLD_FRICTION
     inertia = {"localInertiaDiagonal": moments} if moments is not None else {}
+    if inertia and index >= 0:     # given with the settings below, pybullet drops a jointed
+        client.changeDynamics(body, index, **inertia)   # link's inertia (keeps its shapes')
+        inertia = {}
     client.changeDynamics(body, index, lateralFriction=mu, restitution=WORLD_RESTITUTION,
                           linearDamping=0.0, angularDamping=0.0,
                           activationState=pybullet.ACTIVATION_STATE_DISABLE_SLEEPING, **inertia)
@@ -199,13 +202,16 @@ def jointed_body(tree: Tree, links: Dict[str, Link], shapes: Dict[str, List[Shap
     client.built_joints[body] = tuple(joints)
     # each link's friction in a call of its own, once every link is set up: in one call with
     # the settings above pybullet leaves a jointed link at its default 0.5 and gives the base
-    # the last link's (as urdf_loader.setup_movable found for URDF bodies)
+    # the last link's (as it does for URDF bodies too)
     for index, entry in enumerate(entries, start=-1):
         own = [s for s in shapes.get(entry.link, []) if s.collision] if entry.link else []
         client.changeDynamics(body, index, lateralFriction=own[0].mu if own else WORLD_FRICTION)
     handle = Body(client, body)
     for index, (entry, joint) in enumerate(zip(entries[1:], joints)):
         _set_up_joint(handle, index, entry.joint, joint)
+    cap = _top_speed([entry.joint for entry in entries[1:]])
+    if cap is not None:
+        client.changeDynamics(body, -1, maxJointVelocity=cap)
     if egl_enabled(client):
         view_culling.note_drawn_groups(client, body, [s for link in tree.links
                                                       for s in shapes.get(link, [])
@@ -225,9 +231,20 @@ def _built_joint(entry: BodyLink) -> BuiltJoint:
                       joint.friction, lower, upper)
 
 
+def _top_speed(joints: List[Joint]) -> Optional[float]:
+    """The one top speed pybullet keeps for all the joints of a multibody (rad/s or m/s): the
+    fastest of their <limit><velocity>, where every moving joint has one; None (pybullet's
+    own cap) where one has none. A joint whose limit is lower than another's of the same
+    body is not held to it."""
+    moving = [j for j in joints if j.kind != "fixed"]
+    if not moving or any(j.velocity <= 0 for j in moving):
+        return None
+    return max(j.velocity for j in moving)
+
+
 def _set_up_joint(body: Body, index: int, joint: Joint, built: BuiltJoint) -> None:
     """Joint ``index`` as ``joint`` says: its stops, damping (held as set_joint_properties
-    holds it: Body.damp_joint) and top speed, and a motor of its friction's force holding it
+    holds it: Body.damp_joint), and a motor of its friction's force holding it
     (pybullet's default motors would brake every joint)."""
     client = body.client
     if built.lower > -NO_STOP:
@@ -235,8 +252,6 @@ def _set_up_joint(body: Body, index: int, joint: Joint, built: BuiltJoint) -> No
                               jointUpperLimit=built.upper)
     if joint.damping > 0:
         body.damp_joint(index, joint.damping, limits.MAX_TIME_STEP)
-    if joint.velocity > 0:
-        client.changeDynamics(body.uid, index, maxJointVelocity=joint.velocity)
     if joint.kind == "ball":
         client.setJointMotorControlMultiDof(body.uid, index, pybullet.POSITION_CONTROL,
                                             targetPosition=[0, 0, 0, 1], positionGain=0,

@@ -5,7 +5,7 @@ is ``client``): the world's bodies, gravity, the step, ray casts, the robots' co
 A robot URDF loaded into it is a ``robot_body.RobotBody``. Frames: ``world`` is the SDF world
 frame (z up). Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
-from typing import Dict, List, Optional, Tuple
+from typing import Dict, FrozenSet, List, Optional, Tuple
 
 import numpy as np
 
@@ -29,6 +29,7 @@ ROBOT_GROUPS = ((1 << MAX_ROBOTS) - 1) << FIRST_ROBOT_BIT
 # per hit), and how near its start a hit is taken as the ray starting inside a convex solid (m)
 MAX_RAY_HITS = 16
 RAY_START_TOLERANCE = 1e-6
+PROBE_RADIUS = 1e-4     # m: solids_at: the sphere that probes each point
 
 
 class WorldPhysics:
@@ -160,6 +161,37 @@ class WorldPhysics:
                                                 else position[2] > highest[i]):
                         highest[i] = position[2]
         return highest
+
+    def solids_at(self, points: np.ndarray) -> List[FrozenSet[Tuple[int, int]]]:
+        """The static world colliders (body id, link index) whose solid holds each world
+        (x, y, z) of the (N, 3) ``points`` (m), a point on a face (the seam of two tiles) in
+        both: Bullet's closest points between a sphere of PROBE_RADIUS at the point and each
+        static collider of the world's collision group whose bounding box holds it, at a
+        negative distance (the point inside or within PROBE_RADIUS of the collider). A box,
+        cylinder, sphere or a polyline's convex piece is solid; a static mesh is triangles only
+        (a point inside a closed mesh is in none); movable models and robots never count."""
+        client = self.client
+        filters = client.filters or {}
+        probe = None
+        found = []
+        for point in np.asarray(points, dtype=float).tolist():
+            low = [v - PROBE_RADIUS for v in point]
+            high = [v + PROBE_RADIUS for v in point]
+            holders = set()
+            for uid, link in client.getOverlappingObjects(low, high) or ():
+                group = filters.get((uid, link), (0, 0))[0]
+                if not group & WORLD_COLLISION_GROUP or client.getDynamicsInfo(uid, link)[0]:
+                    continue
+                if probe is None:   # built on first need: most landings never probe
+                    probe = bullet_shapes.collision_shape(client, pybullet.GEOM_SPHERE,
+                                                          radius=PROBE_RADIUS)
+                contacts = client.getClosestPoints(-1, uid, 0.0, linkIndexB=link,
+                                                   collisionShapeA=probe,
+                                                   collisionShapePositionA=point)
+                if any(contact[8] < 0.0 for contact in contacts or ()):
+                    holders.add((uid, link))
+            found.append(frozenset(holders))
+        return found
 
     def overlaps(self, body: int, min_depth: float) -> List[Tuple[int, int, float, float]]:
         """(body id, link index, depth m, top z m) of each collider that ``body`` penetrates by

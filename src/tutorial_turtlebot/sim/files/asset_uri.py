@@ -21,6 +21,7 @@ ROS plugins do.
   loader. model.config and the SDF file must be regular files (file_read), model.config at most
   file_read.MAX_MODEL_CONFIG_BYTES: anything else is refused.
 - ``package://PKG/rest`` is PKG's folder from rospkg, else a model folder called PKG.
+- ``http://`` and ``https://`` URIs are Fuel URLs, read from the Fuel cache alone (fuel_uri).
 - ``file://path`` and a bare path are absolute, or relative. A relative one is looked for as
   Gazebo looks: in the folder of the file that names it (the model's folder), then the working
   directory, then each folder of ``GAZEBO_RESOURCE_PATH`` (colon-separated), then the model
@@ -37,6 +38,7 @@ from typing import Callable, Iterable, List, Optional, Sequence, Tuple
 from ...errors import UserError, WorldError
 from . import xml_reader
 from .file_read import MAX_MODEL_CONFIG_BYTES, not_regular, read_file
+from .fuel_uri import fuel_file, is_web_uri, searched_line
 from ...package_data import data_dir
 
 PACKAGE_MODELS = data_dir("models")
@@ -58,6 +60,11 @@ class AssetNotFound(AssetError):
         super().__init__(message)
         self.short = short or message
         self.searched = searched
+
+
+class FuelNotCached(AssetNotFound):
+    """A Fuel URL whose file is neither in the Fuel cache nor in a model folder of its name
+    (Gazebo 11 loads the world without it; world_sdf sums such warnings up)."""
 
 
 class ModelLeftOut(AssetNotFound):
@@ -200,8 +207,10 @@ def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None)
     if not rest:
         raise AssetError("empty URI %r" % uri)
     if "://" in rest and not scheme:
-        raise AssetError("URI %r: only model://, package://, file:// and paths are read"
-                         % uri)
+        if is_web_uri(uri):
+            return _fuel(uri, model_path)
+        raise AssetError("URI %r: only model://, package://, file://, Fuel URLs and paths are "
+                         "read" % uri)
     if scheme == "model":
         found = model_path.find(rest.strip("/"))
         if found is None:
@@ -240,6 +249,19 @@ def resolve_uri(uri: str, base_dir: str, model_path: Optional[ModelPath] = None)
         raise AssetNotFound("%s not found (%s does not exist)%s"
                             % (uri, path, _case_note([path])))
     return path
+
+
+def _fuel(uri: str, model_path: ModelPath) -> str:
+    """The file (or model folder) of the Fuel URL ``uri`` (fuel_uri.fuel_file); AssetNotFound
+    for an http(s) URI that is no Fuel URL, FuelNotCached for one found nowhere."""
+    found, problem = fuel_file(uri, model_path.environ, model_path.find)
+    if found is not None:
+        return found
+    if problem:
+        raise AssetNotFound("URI %s: %s" % (uri, problem))
+    searched = searched_line(model_path.environ, model_path.describe())
+    raise FuelNotCached("%s not cached: %s" % (uri, searched), short="%s not cached" % uri,
+                        searched=searched)
 
 
 def _relative(uri: str, rest: str, base_dir: str, model_path: ModelPath) -> str:

@@ -167,7 +167,7 @@ class World:
     #                                       that runs here, in file order (world_sensor_reading)
     gravity: Tuple[float, float, float] = (0.0, 0.0, -9.8)   # m/s^2, world frame: <gravity>
     model_plugins: Tuple[object, ...] = ()   # its models' model plugins that run here, in file
-    #                                          order (plugins.model_table), each naming its model
+    #                                          order (plugins.table), each naming its model
 
     def model(self, name: str) -> Model:
         """The top-level model called ``name``; KeyError if there is none."""

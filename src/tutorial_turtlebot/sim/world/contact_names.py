@@ -5,7 +5,9 @@ colliders it touches, and where its own collisions are in the engine. Knows noth
 A static SDF collision is a fixed body of its own (engine.world_bullet); a movable SDF link is
 one body or one link of a multibody (LinkPart), named by its first collision; a URDF model's
 link by the first of its geoms (Gazebo's names, world_models.urdf_model) that starts with the
-link's name, else "<link>_collision" (sdformat's parser_urdf).
+link's name, else "<link>_collision" (sdformat's parser_urdf). A robot's bumper names the
+collisions of its link as Gazebo names them (RobotDescription.collision_names): all of them are
+that link's one body link in the engine.
 """
 from typing import Dict, Optional, Tuple
 
@@ -81,6 +83,8 @@ def collision_link(model, collision: str) -> Optional[Tuple[str, Optional[Body],
     """Where the scoped ``collision`` of ``model`` is in the engine: (its link's scoped name,
     body, link index); None if the model has no such collision."""
     world = getattr(model, "world", None)
+    if world is None and getattr(model, "robot_body", None) is not None:
+        return _robot_collision_link(model, collision)
     shape = next((s for s in (world.model_shapes(model.name) if world is not None else ())
                   if s.collision and s.name == collision), None)
     if shape is None:
@@ -91,4 +95,17 @@ def collision_link(model, collision: str) -> Optional[Tuple[str, Optional[Body],
     for link in model.links:
         if "%s::%s" % (model.name, link.name) == shape.link and link.body is not None:
             return shape.link, link.body, link.index
+    return None
+
+
+def _robot_collision_link(model, collision: str) -> Optional[Tuple[str, Optional[Body], int]]:
+    """collision_link of a robot's (world_models.RobotModel) "model::link::collision"."""
+    prefix = model.name + "::"
+    link, sep, geom = collision[len(prefix):].partition("::")
+    names = model.robot_body.description.collision_names()
+    if not collision.startswith(prefix) or not sep or geom not in names.get(link, ()):
+        return None
+    for part in model.links:
+        if part.name == link and part.body is not None:
+            return prefix + link, part.body, part.index
     return None

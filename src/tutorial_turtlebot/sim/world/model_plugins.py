@@ -1,5 +1,5 @@
 """The model plugins of the world's models, running: what gazebo_ros_p3d,
-gazebo_ros_joint_state_publisher and hector's imu and gps (files.plugins.model_table) compute,
+gazebo_ros_joint_state_publisher and hector's imu and gps (files.plugins.table) compute,
 each at its rate, from where its model's links and joints are now. Knows nothing of ROS: the
 node asks for a reading only when someone subscribes to it.
 
@@ -13,10 +13,12 @@ every step); each ``RunningPlugin`` then gives its reading on demand:
   HectorImuRunner.imu(now_ns)       Imu's orientation, rates, acceleration and covariances
   HectorGpsRunner.fix(now_ns)       NavSatFix's latitude, longitude, altitude, covariance and
                                     the velocity
-  DiffDriveRunner.odometry()        gazebo_ros_diff_drive's odom -> robotBaseFrame pose and
-                                    body-frame twist (an SDF model's; a robot's is its SimRobot)
-A plugin that acts does it at its tick (``tick(now_ns)``, in ``due``): the diff drive's wheel
-motors toward its command (``DiffDriveRunner.command``), as the physics step after it sees them.
+  DiffDriveRunner.odometry()        a drive's odom -> robotBaseFrame pose and base-frame
+  DriveRunner.odometry()            twist (an SDF model's: model_drives; a robot's is its
+                                    SimRobot)
+A plugin that acts does it at its tick (``tick(now_ns)``, in ``due``): a drive's wheel motors
+(or its push, its velocity) toward its command (``command``), as the physics step after it
+sees them. RunningPlugin and Odometry are plugin_runner's.
 Frames: world (z up) unless said; a link's twist is in the world frame. Units: m, s, rad, deg
 (latitude, longitude), m/s^2.
 """
@@ -27,34 +29,19 @@ from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
 import numpy as np
 
 from .. import kinematics
-from ..devices.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController,
-                                  sanitize_command)
-from ..devices.wheel_odometry import WheelOdometry
-from ..files.plugins.gazebo_ros_diff_drive import ModelDiffDrive
 from ..files.plugins.gazebo_ros_joint_state_publisher import JointStatePublisherPlugin
 from ..files.plugins.gazebo_ros_p3d import P3dPlugin
 from ..files.plugins.hector_gazebo_ros_gps import HectorGpsPlugin
 from ..files.plugins.hector_gazebo_ros_imu import ErrorModel, HectorImuPlugin
+from . import model_drives
 from . import reference_frames as rf
-from .schedule import RateSchedule
+from .model_drives import DiffDriveRunner, DriveRunner
+from .plugin_runner import NS_PER_S, Odometry, RunningPlugin, Vec
 
 MODEL_PLUGINS = "model_plugins"      # the world output Simulation.step reports them by
-NS_PER_S = 1e9
 EQUATORIAL_RADIUS = 6378137.0        # m, WGS84
 FLATTENING = 1.0 / 298.257223563     # WGS84
 ECCENTRICITY2 = 2.0 * FLATTENING - FLATTENING ** 2
-Vec = Tuple[float, float, float]
-
-
-class Odometry(NamedTuple):
-    """p3d's message: pose (position, orientation x y z w) of the body in the frame, twist
-    (linear, angular), and the variance on both covariances' diagonals."""
-
-    position: Vec
-    orientation: Tuple[float, float, float, float]
-    linear: Vec
-    angular: Vec
-    variance: float
 
 
 class ImuReading(NamedTuple):
@@ -118,65 +105,6 @@ class ErrorState:
         noise = self.rng.normal(0.0, 1.0, 3) * np.array(m.gaussian_noise)
         self.error = np.array(m.offset) + self.drift + noise
         return self.error
-
-
-class RunningPlugin:
-    """One model plugin of a model: its data (``spec``), the model, the namespace its topics
-    are in ("" = the node's), its schedule and its own noise."""
-
-    kind = ""
-
-    def __init__(self, spec, model, namespace: str, step_rate: float, rng: np.random.Generator,
-                 gravity: Callable[[], Vec]):
-        self.spec = spec
-        self.model = model
-        self.namespace = namespace
-        self.rng = rng
-        self.gravity = gravity
-        self.schedule = RateSchedule(min(spec.update_rate or step_rate, step_rate))
-
-    @property
-    def name(self) -> str:
-        """"model::plugin"."""
-        return "%s::%s" % (self.model.name, self.spec.name)
-
-    def link(self, name: str) -> Tuple[rf.Pose, rf.Twist]:
-        """World pose and twist of link ``name`` (below the model) now (a robot's link that a
-        fixed joint joins to its parent: from the root link's); KeyError if the model no
-        longer has it."""
-        states = {link: (pose, twist) for link, pose, twist in self.model.link_states()}
-        found = states.get(self.model.name + "::" + name)
-        if found is not None:
-            return found
-        body = getattr(self.model, "robot_body", None)     # a robot's link joined by a fixed
-        description = getattr(body, "description", None)   # joint: in its root link's body
-        if description is None or name not in description.links:
-            raise KeyError(name)
-        (root_position, root_orientation), (linear, angular) = states[
-            self.model.name + "::" + description.root_link]
-        in_root = description.transform(description.root_link, name)
-        lever = rf.rotate(root_orientation, in_root[:3, 3])
-        pose = rf.compose((root_position, root_orientation),
-                          (tuple(in_root[:3, 3]), kinematics.quat_from_matrix(in_root[:3, :3])))
-        return pose, (tuple(np.add(linear, np.cross(angular, lever))), angular)
-
-    def restart(self) -> None:
-        """Its state as when it was loaded (reset_world, reset_simulation)."""
-
-    def tick(self, now_ns: int) -> None:
-        """What it does at each of its ticks, before it is read (a drive's control)."""
-
-
-def find_joints(model, names: Sequence[str]) -> List[Tuple[object, int]]:
-    """(body, joint index) of each of the movable joints ``names`` of ``model``'s bodies, as
-    Body.joints() names them; KeyError for one the model does not simulate."""
-    found: Dict[str, Tuple[object, int]] = {}
-    for part in model.parts:
-        if part.movable:
-            for joint in part.body.joints():
-                if joint.movable:
-                    found.setdefault(joint.name, (part.body, joint.index))
-    return [found[name] for name in names]
 
 
 class P3dRunner(RunningPlugin):
@@ -338,88 +266,9 @@ class HectorGpsRunner(RunningPlugin):
                        float(-s * velocity[0] + c * velocity[1]), float(velocity[2])))
 
 
-class DiffDriveRunner(RunningPlugin):
-    """gazebo_ros_diff_drive on an SDF model, as a robot's (SimRobot) runs it: at each tick of
-    <updateRate> the command's rim speeds ramped by <wheelAcceleration> (devices.diff_drive)
-    become the <leftJoint>/<rightJoint> motors' targets (rad/s, at most <wheelTorque> N*m); a
-    command is held until the next. Odometry (odometrySource world) is the model frame's
-    pose in the world, the twist in the model frame; encoder odometry is integrated from the
-    wheel angles at each tick, from (0, 0, 0)."""
-
-    kind = "diff_drive"
-
-    def __init__(self, spec: ModelDiffDrive, *args, **kwargs):
-        super().__init__(spec, *args, **kwargs)
-        self.drive = DiffDriveController(spec.wheel_separation, spec.wheel_radius,
-                                         spec.wheel_acceleration)
-        self.encoders = WheelOdometry(spec.wheel_separation, spec.wheel_radius)
-        self._wheels: Tuple[List[object], List[Tuple[object, int]]] = ([], [])
-        self.restart()
-
-    def restart(self) -> None:
-        self.drive.reset()
-        self.encoders.reset()
-        self._last_ns: Optional[int] = None
-
-    def command(self, linear: float, angular: float) -> List[str]:
-        """A new cmd_vel (linear.x m/s, angular.z rad/s), held until the next: NaN or inf
-        raise ValueError; beyond SAFE_LINEAR / SAFE_ANGULAR clamped, the problems returned."""
-        linear, angular, problems = sanitize_command(linear, angular, SAFE_LINEAR,
-                                                     SAFE_ANGULAR)
-        self.drive.set_command(linear, angular)
-        return problems
-
-    def wheels(self) -> List[Tuple[object, int]]:
-        """(body, joint index) of the left and right wheel joints (found again when the
-        model's bodies change: a rebuild); none where they are not simulated (a static
-        model's: it does not move)."""
-        bodies = [p.body for p in self.model.parts]
-        if len(bodies) != len(self._wheels[0]) or any(map(operator.is_not, bodies,
-                                                          self._wheels[0])):
-            try:
-                found = find_joints(self.model, (self.spec.left_joint, self.spec.right_joint))
-            except KeyError:
-                found = []
-            self._wheels = (bodies, found)
-        return self._wheels[1]
-
-    def tick(self, now_ns: int) -> None:
-        spec: ModelDiffDrive = self.spec
-        wheels = self.wheels()
-        rates = self.drive.update(1.0 / self.schedule.rate_hz)
-        for (body, index), rate in zip(wheels, rates):
-            body.set_joint_motor(index, rate, spec.wheel_torque)
-        if spec.odometry_source == "encoders" and wheels:
-            left, right = (body.joint_state(index)[0] for body, index in wheels)
-            dt = 0.0 if self._last_ns is None else (now_ns - self._last_ns) / NS_PER_S
-            self.encoders.update(left, right, dt)
-            self._last_ns = now_ns
-
-    def odometry(self) -> Odometry:
-        """odom -> robotBaseFrame: position (m), orientation (x y z w), twist in the base
-        frame (m/s, rad/s: linear x and y, angular z); variance 0 (the topic's covariance is
-        the plugin's fixed one)."""
-        if self.spec.odometry_source == "encoders":
-            e = self.encoders
-            return Odometry((e.x, e.y, 0.0), kinematics.quat_from_yaw(e.yaw),
-                            (e.linear, 0.0, 0.0), (0.0, 0.0, e.angular), 0.0)
-        position, orientation = self.model.pose()
-        linear, angular = self.model.twist()
-        part = next((p for p in self.model.parts if p.movable), None)
-        if part is not None:     # the model frame's velocity, not its body's centre's
-            lever = np.subtract(position, part.body.pose()[0])
-            linear = tuple(np.add(linear, np.cross(angular, lever)))
-        yaw = kinematics.yaw_from_quat(orientation)
-        c, s = math.cos(yaw), math.sin(yaw)
-        return Odometry(tuple(float(v) for v in position), tuple(orientation),
-                        (float(c * linear[0] + s * linear[1]),
-                         float(c * linear[1] - s * linear[0]), 0.0),
-                        (0.0, 0.0, float(angular[2])), 0.0)
-
-
 RUNNERS = ((P3dPlugin, P3dRunner), (JointStatePublisherPlugin, JointStateRunner),
-           (HectorImuPlugin, HectorImuRunner), (HectorGpsPlugin, HectorGpsRunner),
-           (ModelDiffDrive, DiffDriveRunner))
+           (HectorImuPlugin, HectorImuRunner), (HectorGpsPlugin, HectorGpsRunner)
+           ) + model_drives.RUNNERS
 
 
 def namespace_of(spec, model_name: str, robot_namespace: str) -> str:
@@ -509,10 +358,11 @@ class ModelPlugins:
         self.next_ns = min((p.schedule.next_ns for p in self.plugins), default=math.inf)
         return bool(self.due_now) or changed
 
-    def drives(self, now_ns: int) -> List[DiffDriveRunner]:
-        """The diff drives of the models now (the registry followed first)."""
+    def drives(self, now_ns: int) -> List[RunningPlugin]:
+        """The drives of the SDF models now (DiffDriveRunner, DriveRunner: the registry
+        followed first)."""
         self.sync(now_ns)
-        return [p for p in self.plugins if isinstance(p, DiffDriveRunner)]
+        return [p for p in self.plugins if isinstance(p, (DiffDriveRunner, DriveRunner))]
 
     def reset(self, now_ns: int) -> None:
         """Every schedule starts over at ``now_ns``, every plugin's state as loaded."""

@@ -1,8 +1,11 @@
-"""The drives of a robot besides the diff drive (sim_robot runs that one itself): what each
-gazebo_ros drive plugin does to the robot's body at its control ticks, and the odometry it
-reports. One small interface, each drive a class:
+"""The drives besides the diff drive (sim_robot runs a robot's itself, model_drives an SDF
+model's): what each gazebo_ros drive plugin does to the body at its control ticks, and the
+odometry it reports, written once for any model: a URDF robot's (SimRobot, on its RobotBody)
+and an SDF model's (model_drives.DriveRunner, on an engine.drive_body.DriveBody, which answers
+the same calls; the base frame there is the model frame). One small interface, each drive a
+class:
 
-  ``wheels`` (RobotBody's wheel_joints, wheel_torque, wheel_sides, free_wheels),
+  ``wheels`` (RobotBody's and DriveBody's wheel_joints, wheel_torque, wheel_sides, free_wheels),
   ``control_rate(step_rate)`` and ``odom_rate(step_rate)`` (Hz; 0: no odometry), ``reset()``,
   ``set_command(x, y, yaw_rate, now)`` (m/s, m/s, rad/s in the base frame; s of sim time),
   ``tick(body, now, dt)`` (one control tick's actuation), ``odom_tick(body, now)`` (at each
@@ -237,6 +240,6 @@ DRIVES = {SkidSteerPlugin: SkidSteerDrive, PlanarMovePlugin: PlanarMoveDrive,
 
 
 def make_drive(plugin) -> Optional[object]:
-    """The drive of a robot's drive plugin; None for the diff drive (or none)."""
+    """The drive of a drive plugin's data; None for the diff drive (or none)."""
     kind = DRIVES.get(type(plugin))
     return kind(plugin) if kind else None

@@ -16,6 +16,7 @@ import numpy as np
 from .. import kinematics
 from ..files import limits
 from ..devices.camera import CameraIntrinsics
+from ..devices.image_formats import CameraOutput
 from ..engine.rendering import CameraRenderer, validate_spec
 from ..devices.diff_drive import (SAFE_ANGULAR, SAFE_LINEAR, DiffDriveController,
                                   sanitize_command)
@@ -137,7 +138,8 @@ class RobotLaser:
 @dataclass
 class RobotCamera:
     """One of a robot's cameras: its sensor, what it renders (spec), CameraInfo's numbers, its
-    renderer, its pose in the root link (4x4, link axes) and the name of its output."""
+    renderer, its pose in the root link (4x4, link axes), the name of its output and what it
+    publishes of a drawn image (its lens and <format>, as a world model's camera)."""
 
     sensor: CameraSensor
     spec: CameraSpec
@@ -145,6 +147,15 @@ class RobotCamera:
     renderer: CameraRenderer
     pose: np.ndarray
     output: str
+    image: Optional[CameraOutput] = None     # None: the drawn rgb8 image as it is
+
+
+def _intrinsics(sensor: CameraSensor) -> CameraIntrinsics:
+    """CameraInfo's numbers of a robot's camera: its spec's, D the plugin's."""
+    intrinsics = CameraIntrinsics.from_spec(sensor.spec)
+    if not any(sensor.info_distortion):
+        return intrinsics
+    return replace(intrinsics, distortion=tuple(sensor.info_distortion))
 
 
 def _sensor_pose(body: RobotBody, link: str, pose6) -> np.ndarray:
@@ -183,7 +194,7 @@ class SimRobot:
         for sensor in self.camera_sensors:
             validate_spec(sensor.spec)
         if self.camera_spec is not None:
-            self.camera_intrinsics = CameraIntrinsics.from_spec(self.camera_spec)
+            self.camera_intrinsics = _intrinsics(self.camera_sensor)
         # the diff drive is run here; another drive (robot_drives) is ``motion``
         self.motion = make_drive(plugins.drive)
         drive = self.diff_plugin = (plugins.drive if isinstance(plugins.drive, DiffDrivePlugin)
@@ -210,11 +221,13 @@ class SimRobot:
         for index, sensor in enumerate(self.camera_sensors):
             renderer = self.camera if index == 0 else CameraRenderer(
                 physics.client, sensor.spec, use_egl=physics.egl or physics.gui)
-            intrinsics = (self.camera_intrinsics if index == 0
-                          else CameraIntrinsics.from_spec(sensor.spec))
+            intrinsics = self.camera_intrinsics if index == 0 else _intrinsics(sensor)
+            image = CameraOutput(sensor.image_format, sensor.lens, sensor.spec.width,
+                                 sensor.spec.height)
             self.cameras.append(RobotCamera(sensor, sensor.spec, intrinsics, renderer,
                                             _sensor_pose(self.body, sensor.link, sensor.pose),
-                                            output_name("camera", index)))
+                                            output_name("camera", index),
+                                            None if image.plain else image))
         step_rate = 1.0 / physics.time_step
         separation = drive.wheel_separation if drive else 1.0
         radius = drive.wheel_radius if drive else 1.0
@@ -401,9 +414,15 @@ class SimRobot:
         return position, rotation @ LINK_TO_OPTICAL
 
     def camera_image(self, depth: bool = False, index: int = 0):
-        """(rgb uint8 HxWx3, depth float32 HxW metres or None) seen by camera ``index`` now."""
+        """(the image's pixels, depth float32 HxW metres or None) seen by camera ``index`` now:
+        rgb uint8 HxWx3, or distorted by its lens and in its <format> (RobotCamera.image,
+        image_formats.converted); the depth is undistorted."""
         renderer = self.camera if index == 0 else self.cameras[index].renderer
-        return renderer.render(*self.camera_pose(index), depth=depth)
+        rgb, metres = renderer.render(*self.camera_pose(index), depth=depth)
+        image = self.cameras[index].image
+        if image is None:
+            return rgb, metres
+        return image.pixels(rgb), metres
 
     def _filter_imu(self) -> None:
         """At an IMU tick: low-pass the acceleration (world frame) from the change of the

@@ -114,7 +114,8 @@ class Simulation:
         # Cameras render through EGL where it works; it must be loaded before any body. An
         # empty world (robots to be spawned) loads it in case one of them has a camera.
         wants_camera = (description is None or any(isinstance(s, CameraSensor)   # a world's too
-                                                   for s in self.world.sensors)
+                                                   for s in self.world.sensors
+                                                   + description.plugins.sensors)
                         or (description.plugins.camera is not None and options.camera))
         self.physics = WorldPhysics(self.world, config.time_step, config.solver_iterations,
                                     config.gui, egl=wants_camera)
@@ -130,12 +131,13 @@ class Simulation:
         for model in models_of_world(self.world, self.physics.world_bodies, self.physics.client):
             self.models.add(model)
         self.actors = actor_motions(self.world, self.models)   # moved by their scripts
-        # the world models' sensors (spawned ones too), each at its rate: world_sensors
-        self.world_sensors = WorldSensors(self.physics, self.models, config.seed)
+        self.robots: Dict[str, SimRobot] = {}
+        # the world models' sensors (spawned ones too; the robots' that SimRobot does not
+        # make), each at its rate: world_sensors
+        self.world_sensors = WorldSensors(self.physics, self.models, config.seed, self.robots)
         self.step_ns = seconds_to_ns(config.time_step)
         self.time_ns = 0
         self.schedules: Dict[str, RateSchedule] = {"clock": RateSchedule(config.clock_rate)}
-        self.robots: Dict[str, SimRobot] = {}
         self._robot_list: List[SimRobot] = []
         # the models' and robots' model plugins (p3d, joint states, hector's): model_plugins
         self.model_plugins = ModelPlugins(lambda: self.config.time_step, self.models,

@@ -1,10 +1,10 @@
 """Where a robot spawned or teleported stands, and what it overlaps there, as Gazebo has it.
 
 Gazebo refuses no spawn for overlap: it puts a robot where it is asked to and lets the contacts
-push it out. Here a robot asked to stand below the floor under it is put on top of that floor
-at once (``landed_pose``: its spawn, spawn_model, set_model_state, set_link_state), and a robot
-that overlaps a model where it stands is spawned all the same, with one warning
-(``overlap_warning``).
+push it out. Here a robot asked to stand below the floor under it, or inside a solid floor,
+is put on top of that floor at once (``landed_pose``: its spawn, spawn_model, set_model_state,
+set_link_state), and a robot that overlaps a model where it stands is spawned all the same,
+with one warning (``overlap_warning``).
 
 **The landing rule.** The robot is measured by its URDF's collision geometry, turned as asked:
 its top (m above its root link, base_footprint on a TurtleBot3) and its reach (m from the root's
@@ -16,10 +16,25 @@ meet is the floor under the robot: if it lies more than LIFT_TOLERANCE above the
 the root link is put on it (same x, y and orientation); otherwise the pose is kept as given (a
 robot above the floor falls, as in Gazebo). So a surface counts only if it is below the robot's
 own top at the requested pose: a table top, a shelf, anything above the robot's head is never
-climbed onto (the robot stands under it), and a floor higher than the robot itself (a 0.3 m
-stage on the ground, under a robot asked for z 0) is not found either: the robot overlaps it,
-and the warning proposes its top as z_pos. Movable models and other robots are no floor (the
+climbed onto (the robot stands under it). Movable models and other robots are no floor (the
 rays pass them by).
+
+**Inside a solid floor.** A floor higher than the robot itself (a 0.19 m floor box under a
+Waffle, 0.141 m tall, asked for z 0) holds the robot's whole body, and rays cast from inside a
+solid meet none of its faces. Where the rays above found no floor to lift onto, the robot's
+vertical span is probed at each footprint point: from SOLID_INSET above its root to
+SOLID_INSET below its top, both ends must lie inside one and the same static solid collider
+(``solids_at``: a box, cylinder, sphere, or a polyline's convex piece), and so, the solid being
+convex, the whole span between. Then rays cast down from BURIED_DEPTH above the requested z to
+the probed top meet the solid's top in every column, the lowest surface of each; the root link
+is put on the highest of them. Either one solid holds every column, or the tops differ by at
+most TILE_STEP (a floor of tiles): a footprint held by a floor and a wall beside it is an
+overlap. A solid that holds the whole footprint is stood on however high (a pillar wider than
+the robot, a wall thick enough). Under a table top, over the robot's head or lower than its
+top (a low bench), the root's end is in open space; a stage edge or a table leg holds only
+some of the footprint's columns: none is lifted, and the overlap warning below proposes the
+top as z_pos. A static mesh is triangles only (a closed one could as well be a
+room as a solid), so a robot inside one is never taken as buried.
 
 **Under the ground.** When the rays meet nothing at all from the robot's top down to
 BURIED_DEPTH below the requested z, the robot has no floor below it: it stands under a world's
@@ -49,6 +64,8 @@ from ..files.meshes.mesh_file import load_mesh
 from ..files.world_types import Shape, World
 
 LIFT_TOLERANCE = 0.001   # m: a floor at most this above the requested z leaves the pose as given
+SOLID_INSET = 0.001      # m: a buried robot's span is probed this far inside its root and top
+TILE_STEP = 0.01         # m: solids whose tops differ at most this are one floor (its tiles)
 BURIED_DEPTH = 100.0     # m: nothing this far below a robot: it is under the ground (see above)
 OVERLAP_DEPTH = 0.01     # m: a penetration at most this deep is no overlap (resting contacts)
 RING_POINTS = 12         # rays on each of the two circles about the root (and one at it)
@@ -112,8 +129,9 @@ def footprint_points(x: float, y: float, reach: float) -> np.ndarray:
 
 def landed_pose(physics, description, pose: Pose) -> Pose:
     """``pose`` ((x, y, z), quaternion) of a robot's root link, with z raised to the top of
-    the floor under the robot where that lies above z (the landing rule, above); ``pose``
-    itself where it does not. ``physics``: the engine's WorldPhysics."""
+    the floor under the robot where that lies above z, or of the solid floor the robot is
+    inside (the landing rule, above); ``pose`` itself where neither is. ``physics``: the
+    engine's WorldPhysics."""
     (x, y, z), orientation = pose
     top, reach = robot_extent(collision_points(description), orientation)
     if not top > LIFT_TOLERANCE:
@@ -130,7 +148,37 @@ def landed_pose(physics, description, pose: Pose) -> Pose:
     floor = float(np.nanmax(floors))
     if floor > z + LIFT_TOLERANCE:
         return (x, y, floor), orientation
+    solid_top = buried_floor_top(physics, points, z, top)
+    if solid_top is not None:                      # inside a solid floor: onto its top
+        return (x, y, solid_top), orientation
     return pose
+
+
+def buried_floor_top(physics, points: np.ndarray, z: float, top: float) -> Optional[float]:
+    """The top (m) of the solid floor that a robot whose root is at z and whose top is ``top``
+    above it lies inside over its whole footprint ``points`` ((N, 2) world x, y, the root's
+    first), None where it does not (the landing rule, "Inside a solid floor")."""
+    low, high = z + SOLID_INSET, z + max(top - SOLID_INSET, SOLID_INSET)
+
+    def held(xy: np.ndarray) -> list:
+        """The solid colliders that hold each vertical segment low..high at ``xy``, whole."""
+        n = len(xy)
+        holders = physics.solids_at(np.concatenate((np.column_stack((xy, np.full(n, low))),
+                                                    np.column_stack((xy, np.full(n, high))))))
+        return [holders[i] & holders[n + i] for i in range(n)]
+
+    (root,) = held(points[:1])            # the root's column first: most poses end here
+    if not root:
+        return None
+    others = held(points[1:])
+    if not all(others):
+        return None
+    tops = physics.surfaces_below(points, z + BURIED_DEPTH, high, lowest=True)
+    if np.any(np.isnan(tops)):
+        return None
+    if not root.intersection(*others) and np.ptp(tops) > TILE_STEP:
+        return None                       # in two solids of other heights: a floor and a wall
+    return float(np.max(tops))
 
 
 # --- overlap -------------------------------------------------------------------------------------

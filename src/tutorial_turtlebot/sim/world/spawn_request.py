@@ -5,12 +5,11 @@ Three kinds, as Gazebo's spawn services take them:
   cylinders, spheres, planes, polylines, meshes, includes): it becomes a ``World`` of that one
   model, renamed and placed;
 - URDF: ``<robot>`` of links and joints, read and checked by urdf_file as a robot's is (one
-  ``RobotDescription``, ``description``), with box, cylinder, sphere or mesh geometry and no
-  robot plugins: ``urdf`` is its text with the requested name and each mesh filename made the
-  absolute path of its file (``package://``, ``file://``, or a path; a relative one from the
-  working directory), which engine.urdf_loader loads (meshes through urdf_meshes: the text of
-  ``bullet_urdf``, held in place where Gazebo holds it: ``<gazebo><static>``, a root link
-  ``world``);
+  ``RobotDescription``, ``description``), with no robot plugins: converted into an SDF model as
+  Gazebo converts it (files/urdf/urdf_to_sdf: fixed joints lumped, ``<gazebo>`` blocks as
+  extensions, mesh filenames as the absolute paths of their files: ``package://``,
+  ``file://``, or a path, a relative one from the working directory) and then read as an SDF
+  spawn is: a ``World`` of that one model (``world``), the conversion's warnings ``notes``;
 - a robot: a URDF whose ``<gazebo>`` blocks hold plugins: ``robot`` is its text as given, and
   the simulation builds it from ``description`` with its plugins (``Simulation.add_robot``).
 The text is parsed once (xml_reader) and checked once; everything downstream uses what that
@@ -30,8 +29,7 @@ import os
 import threading
 import time
 from dataclasses import dataclass
-from typing import Optional
-from xml.etree import ElementTree
+from typing import Optional, Tuple
 
 from ...errors import RequestError
 from . import reference_frames as rf
@@ -40,6 +38,7 @@ from ..files import xml_reader
 from ..kinematics import xyz_rpy_from_pose
 from ..files.urdf.urdf_file import RobotDescription, read_urdf_element
 from ..files.urdf.urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths
+from ..files.urdf.urdf_to_sdf import urdf_to_sdf
 from ..engine.world_bullet import MOVABLE_KINDS
 from .world_models import spawn_failure, spawn_refusal
 from ..files.sdf.world_sdf import load_model_xml
@@ -63,33 +62,16 @@ _PREPARE_LOCK = threading.Lock()   # one spawn is read at a time (the mesh cache
 
 @dataclass
 class SpawnRequest:
-    """A parsed spawn: ``world`` (SDF) or ``description`` (URDF, read once) is set; a URDF is
-    either a plain model (``urdf``: the text pybullet loads) or a robot with plugins
-    (``robot``: its text as given)."""
+    """A parsed spawn: ``world`` (SDF, or a plain URDF converted to SDF) or ``robot`` (a URDF
+    robot's text as given) is set; ``description`` is a URDF's, read once; ``notes``: what the
+    conversion of a plain URDF warns of."""
 
     name: str
     world: Optional[World] = None
-    urdf: Optional[str] = None
     robot: Optional[str] = None
     description: Optional[RobotDescription] = None
     digest: str = ""    # sha256 of the text it was read from: the key of its parked bodies
-
-    def plain_urdf(self) -> Element:
-        """A copy of a plain URDF's ``<robot>`` as ``urdf`` writes it: renamed, without
-        ``<gazebo>`` blocks, each mesh filename the absolute path of its file."""
-        robot = absolute_meshes(self.description.root, mesh_paths(self.description))
-        robot.set("name", self.name)
-        for gazebo in robot.findall("gazebo"):
-            robot.remove(gazebo)
-        return robot
-
-    def bullet_urdf(self) -> str:
-        """The text pybullet loads of a plain URDF: urdf_meshes.bullet_urdf_text of
-        ``plain_urdf``, held in place as Gazebo holds it (RobotDescription.static,
-        held_links)."""
-        description = self.description
-        return bullet_urdf_text(self.plain_urdf(), os.getcwd(), description.static,
-                                description.held_links())
+    notes: Tuple[str, ...] = ()
 
 
 def _check_size(xml: str) -> None:
@@ -116,13 +98,19 @@ def _parse(name: str, xml: str, pose: rf.Pose, kind: str) -> SpawnRequest:
     with spawn_refusal():
         root = xml_reader.parse(xml, "model_xml")
         if root.tag == "robot":
-            return _urdf_request(name, xml, root)
+            return _urdf_request(name, xml, root, pose)
     if kind == "urdf":
         raise spawn_failure("spawn_urdf_model needs a <robot> root element, got <%s>"
                             % root.tag)
     if root.tag not in ("sdf", "gazebo"):
         raise spawn_failure("model_xml: the root element is <%s>: expected <sdf> or "
                             "<robot>" % root.tag)
+    return SpawnRequest(name, world=_sdf_world(root, name, pose))
+
+
+def _sdf_world(root: Element, name: str, pose: rf.Pose) -> World:
+    """The World of the one SDF model of ``root`` (world_sdf.load_model_xml), named ``name``
+    and placed at ``pose``; RequestError if it cannot be read or built."""
     with spawn_refusal():
         world = load_model_xml(root, "model_xml", name, xyz_rpy_from_pose(pose),
                                max_shapes=MAX_SPAWN_SHAPES)
@@ -130,7 +118,7 @@ def _parse(name: str, xml: str, pose: rf.Pose, kind: str) -> SpawnRequest:
         if not shape.static and shape.kind not in MOVABLE_KINDS:
             raise spawn_failure("%s: a %s cannot be part of a model that is not "
                                 "<static>" % (shape.name, shape.kind))
-    return SpawnRequest(name, world=world)
+    return world
 
 
 def prepare_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf",
@@ -189,17 +177,15 @@ def _prepare_world(world: World, deadline: float, seconds: float) -> None:
 
 
 def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> None:
+    """A robot's budgets, and its meshes converted for pybullet."""
     from ..files.urdf.urdf_meshes import mesh_triangles
     description = request.description
-    plain = request.urdf is not None
     shapes = sum(len(link.visuals) + len(link.collisions)
                  for link in description.links.values())
     if shapes > MAX_SPAWN_SHAPES:
         raise _over("shapes (links' collisions and visuals)", shapes, MAX_SPAWN_SHAPES)
     with spawn_refusal():
-        # the meshes of links held in place collide as triangles, not as hulls
-        triangles, hull_vertices = mesh_triangles(
-            description, description.held_links() if plain else ())
+        triangles, hull_vertices = mesh_triangles(description)
         if triangles > MAX_SPAWN_TRIANGLES:
             raise _over("mesh triangles", triangles, MAX_SPAWN_TRIANGLES)
         if hull_vertices > MAX_MOVABLE_MESH_VERTICES:
@@ -207,25 +193,23 @@ def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> Non
                         hull_vertices, MAX_MOVABLE_MESH_VERTICES)
         _check_time(deadline, seconds)
         # the conversions pybullet's copy needs, done now: building it later finds them made
-        if plain:
-            request.bullet_urdf()
-        else:
-            bullet_urdf_text(absolute_meshes(description.root, mesh_paths(description)),
-                             os.getcwd())
+        bullet_urdf_text(absolute_meshes(description.root, mesh_paths(description)),
+                         os.getcwd())
     _check_time(deadline, seconds)
 
 
-def _urdf_request(name: str, xml: str, root: Element) -> SpawnRequest:
+def _urdf_request(name: str, xml: str, root: Element, pose: rf.Pose) -> SpawnRequest:
     """The request of a URDF (``root``: its parsed ``<robot>``), read and checked by urdf_file,
-    relative mesh filenames from the working directory; UserError if it cannot be."""
+    relative mesh filenames from the working directory; UserError if it cannot be. A plain one
+    (no plugins) is converted to SDF (urdf_to_sdf) and read as an SDF spawn at ``pose``."""
     is_robot = any(gazebo.find(".//plugin") is not None for gazebo in root.iter("gazebo"))
     source = "model_xml of %s" % name if is_robot else "model_xml"
     description = read_urdf_element(root, source, os.getcwd())
     if is_robot:
         return SpawnRequest(name, robot=xml, description=description)
-    request = SpawnRequest(name, description=description)
-    request.urdf = ElementTree.tostring(request.plain_urdf(), encoding="unicode")
-    return request
+    sdf, notes = urdf_to_sdf(description)
+    return SpawnRequest(name, world=_sdf_world(sdf, name, pose), description=description,
+                        notes=tuple(notes))
 
 
 def placed(pose: rf.Pose, frame: Optional[rf.Pose]) -> rf.Pose:

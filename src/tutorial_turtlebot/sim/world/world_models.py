@@ -13,15 +13,13 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from ...errors import RequestError, UserError
-from ..engine import urdf_loader
 from ..engine.bodies import Body
 from ..engine.client import Client
 from ..engine.movable_bodies import body_link_frames, movable_trees
 from ..engine.world_bullet import build_world, link_com_pose
 from . import reference_frames as rf
-from ..kinematics import pose_from_xyz_rpy, quat_from_matrix
+from ..kinematics import pose_from_xyz_rpy
 from .reference_frames import Pose, Twist
-from ..files.urdf.urdf_file import RobotDescription
 from ..files.world_types import World
 
 
@@ -91,7 +89,7 @@ class LinkPart:
 @dataclass
 class WorldModel:
     """One model of the world, with what the world API asks of it. Its kind (SdfModel,
-    UrdfModel, RobotModel) knows how its bodies are reset, removed and built again."""
+    RobotModel) knows how its bodies are reset, removed and built again."""
 
     name: str
     static: bool
@@ -234,7 +232,8 @@ class WorldModel:
 
 @dataclass
 class SdfModel(WorldModel):
-    """A model of an SDF world file or of a spawned SDF: built by engine.world_bullet from
+    """A model of an SDF world file or of a spawned SDF or plain URDF (converted to SDF,
+    files/urdf/urdf_to_sdf): built by engine.world_bullet from
     ``world`` (the document it came from), where it is model ``name``."""
 
     world: Optional[World] = None
@@ -251,27 +250,6 @@ class SdfModel(WorldModel):
         for part in self.parts:
             part.body.remove()
         return fresh.parts, fresh.links
-
-
-@dataclass
-class UrdfModel(WorldModel):
-    """A model spawned from a plain URDF (no robot plugins): one body loaded from ``urdf``
-    (the text engine.urdf_loader loads) by ``urdf_loader.load_movable``, with a fixed base
-    when Gazebo holds it in place (``description``, the URDF as read: static, or joined to the
-    world by a root link ``world``; RobotDescription.held_links)."""
-
-    urdf: str = ""
-    description: Optional[RobotDescription] = None
-
-    def _built_again(self):
-        if not self.urdf or not self.parts:
-            return None
-        old = self.parts[0].body
-        body = urdf_loader.load_movable(old.client, self.urdf, held(self.description))
-        old.remove()
-        parts, links, _ = urdf_parts(body, self.description)
-        body.set_pose(rf.compose(self.spawn_pose, parts[0].in_model))
-        return parts, links
 
 
 @dataclass
@@ -434,26 +412,11 @@ def _jointed_links(spec, link_body: Dict[str, int]) -> Dict[str, Tuple[int, int,
     return out
 
 
-# the <joint type> parser_urdf writes for a URDF joint type (get_joint_properties' kind)
-SDF_JOINT_TYPES = {"continuous": "revolute"}
-
-
-def held(description: Optional[RobotDescription]) -> bool:
-    """Whether Gazebo holds the URDF model of ``description`` in place (a fixed base)."""
-    return description is not None and bool(description.held_links())
-
-
-def urdf_parts(body: Body, description: Optional[RobotDescription] = None
-               ) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
-    """(parts, links, joint names) of a body loaded from a URDF: the model frame is its root
-    link's frame; links are the root and every jointed link (fixed links merged, as Gazebo
-    lumps them). A model Gazebo holds in place (``held``) has Gazebo's links and joints
-    (RobotDescription.model_links, model_joints): a static one does not move (its links are
-    fixed in the model frame); of a root ``world`` (the model frame), the links fixed to it
-    are on the fixed base."""
+def urdf_parts(body: Body) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
+    """(parts, links, joint names) of a robot's body loaded from a URDF: the model frame is its
+    root link's frame; links are the root and every jointed link (fixed links merged, as
+    Gazebo lumps them)."""
     com_in_root = body.com_in_root()
-    if held(description):
-        return _held_parts(body, description, com_in_root)
     links = [LinkPart(body.root_link(), body=body, in_body=rf.inverse(com_in_root))]
     joints = []
     for joint in body.joints():
@@ -462,43 +425,15 @@ def urdf_parts(body: Body, description: Optional[RobotDescription] = None
     return [BodyPart(body, com_in_root, movable=True)], links, joints
 
 
-def _held_parts(body: Body, description: RobotDescription, com_in_root: Pose):
-    """urdf_parts of a model Gazebo holds in place."""
-    root = description.root_link
-    joints = [joint.name for joint in description.model_joints()]
-
-    def in_root(link: str) -> Pose:
-        matrix = description.transform(root, link)
-        return tuple(float(v) for v in matrix[:3, 3]), tuple(quat_from_matrix(matrix[:3, :3]))
-    if description.static:
-        links = [LinkPart(link, in_model=in_root(link)) for link in description.model_links()]
-        return [BodyPart(body, com_in_root, movable=False)], links, joints
-    jointed = {joint.child_link: joint.index for joint in body.joints()}
-    to_com = rf.inverse(com_in_root)
-    links = [LinkPart(link, body=body, index=jointed[link]) if link in jointed
-             else LinkPart(link, body=body, in_body=rf.compose(to_com, in_root(link)))
-             for link in description.model_links()]
-    return [BodyPart(body, com_in_root, movable=True)], links, joints
-
-
 def urdf_model(kind, name: str, body: Body, spawn_pose: Optional[Pose] = None,
                collisions: Optional[Dict[str, List[str]]] = None, **fields) -> WorldModel:
-    """A ``kind`` (UrdfModel or RobotModel) of a body loaded from a URDF, at ``spawn_pose``
-    (None: where the body is now); ``collisions``: the URDF's
-    RobotDescription.collision_names(), the model's geoms in link order; ``fields``: the
-    kind's own (urdf and description, robot_body). A model Gazebo holds in place (a
-    UrdfModel's ``description`` says) lists the joints it does not simulate (a static
-    model's, a fixed joint to the world) with their kinds (``joint_types``)."""
-    description = fields.get("description")
-    parts, links, joints = urdf_parts(body, description)
+    """A ``kind`` (RobotModel) of a body loaded from a URDF, at ``spawn_pose`` (None: where the
+    body is now); ``collisions``: the URDF's RobotDescription.collision_names(), the model's
+    geoms in link order; ``fields``: the kind's own (robot_body)."""
+    parts, links, joints = urdf_parts(body)
     geoms = [geom for link in links for geom in (collisions or {}).get(link.name, ())]
-    static = description is not None and description.static
-    joint_types = {}
-    if held(description):
-        joint_types = {j.name: SDF_JOINT_TYPES.get(j.type, j.type)
-                       for j in description.model_joints() if static or j.type == "fixed"}
-    model = kind(name, static, parts, links, spawn_pose or rf.IDENTITY, joints=joints,
-                 joint_types=joint_types, geoms=geoms, **fields)
+    model = kind(name, False, parts, links, spawn_pose or rf.IDENTITY, joints=joints,
+                 geoms=geoms, **fields)
     if spawn_pose is None:
         model.spawn_pose = model.pose()
     return model

@@ -1,11 +1,14 @@
 """The sensors of the world's models, running: what each gazebo_ros sensor plugin of a world
-file's (or a spawned SDF model's) link computes, at its rate, from where its link is now. Knows
+file's (or a spawned SDF model's) link computes, at its rate, from where its link is now; and a
+URDF robot's sensors that SimRobot does not make itself (robot_sensors), the same way. Knows
 nothing of ROS: the node asks for a reading only when someone subscribes to it.
 
 ``WorldSensors`` follows the models of the world (world_models.ModelRegistry): each SDF model
-brings the sensors its document read (World.sensors of its links), a deleted model takes its
-own along. ``due(now)`` says which are due at a physics step (each at its rate, Hz of sim time;
-0: every step); each ``RunningSensor`` then gives its reading on demand:
+brings the sensors its document read (World.sensors of its links), a robot those of its URDF
+(robot_sensors.robot_sensor_specs: on its RobotModel's links, ``namespace`` its spawn's), a
+deleted model takes its own along. ``due(now)`` says which are due at a physics step (each at
+its rate, Hz of sim time; 0: every step); each ``RunningSensor`` then gives its reading on
+demand:
   LaserRunner.scan()          LaserScan ranges (devices.lidar, as a robot's laser)
   RangeRunner.reading()       Range's range (devices.range_sensor)
   BlockLaserRunner.cloud()    PointCloud's points and channel (devices.block_laser)
@@ -18,7 +21,9 @@ own along. ``due(now)`` says which are due at a physics step (each at its rate, 
   BumperRunner.contacts()     ContactsState's states: each pair's points, wrenches on the
                               sensor's link (engine.contacts, contact_names)
   ImuSensorRunner.reading(t)  Imu's orientation, rates, acceleration (devices.imu)
-Rays see the world and every robot. Poses: the sensor's <pose> in its link, the link where
+A world model's rays see the world and every robot; a robot's rays see the world and every
+other robot, never the robot itself, as its lasers' (SimRobot.scan; Gazebo's would see its other
+links). Poses: the sensor's <pose> in its link, the link where
 the model's bodies are (WorldModel.link_states: a static model's link is fixed). Frames: world
 (z up); a sensor looks along its x, a camera's optical frame along z (x right, y down).
 Units: m, s, rad.
@@ -35,8 +40,7 @@ from .. import kinematics
 from ..devices.block_laser import block_cloud
 from ..devices.camera import CameraIntrinsics
 from ..devices.imu import Accelerometer, AxisNoises, imu_axes
-from ..devices.image_formats import converted, encoding
-from ..devices.lens_distortion import DistortionMap
+from ..devices.image_formats import CameraOutput
 from ..devices.lidar import ranges_from_distances, ray_directions
 from ..devices.range_sensor import radiation_type, range_reading
 from ..devices.ray_grid import gazebo_ranges, ray_grid
@@ -51,6 +55,7 @@ from ..files.plugins.gazebo_ros_imu_sensor import ImuSensorPlugin
 from ..files.plugins.sensor_types import BlockLaserSensor, RangeSensor
 from . import reference_frames as rf
 from .contact_names import ContactNames, collision_link, name_in
+from .robot_sensors import robot_sensor_specs
 from .schedule import RateSchedule, seconds_to_ns
 from .sim_robot import LINK_TO_OPTICAL
 
@@ -66,9 +71,12 @@ def model_of(link: str) -> str:
 
 class RunningSensor:
     """One sensor of a world model: its data (``spec``, a WorldSensor), the model it is on,
-    its schedule, its own noise."""
+    its schedule, its own noise; on a robot, the robot's ``namespace`` (normalize_namespace's
+    form; "" on a world model) and its ``ray_mask`` (RobotBody.ray_mask)."""
 
     kind = ""
+    namespace = ""
+    ray_mask = RAY_MASK
 
     def __init__(self, spec, model, physics: WorldPhysics, rate: float,
                  rng: np.random.Generator):
@@ -100,7 +108,8 @@ class RunningSensor:
         first surface before ``end`` m; inf where there is none."""
         origin, rotation = self.pose()
         world = directions @ rotation.T
-        return self.physics.ray_distances(origin + world * start, world, end - start, RAY_MASK)
+        return self.physics.ray_distances(origin + world * start, world, end - start,
+                                          self.ray_mask)
 
 
 class LaserRunner(RunningSensor):
@@ -171,11 +180,10 @@ class CameraRunner(RunningSensor):
         self.camera_spec = replace(spec.spec, rate=self.schedule.rate_hz)
         validate_spec(self.camera_spec)
         self.intrinsics = CameraIntrinsics.from_spec(self.camera_spec)
-        self.image_format = getattr(spec, "image_format", "R8G8B8")
-        self.encoding, self.pixel_bytes = encoding(self.image_format)
-        lens = getattr(spec, "lens", None)
-        self._lens = None if lens is None or lens.is_identity else lens
-        self._map: Optional[DistortionMap] = None
+        self.output = CameraOutput(spec.image_format, spec.lens, self.camera_spec.width,
+                                   self.camera_spec.height)
+        self.image_format = spec.image_format
+        self.encoding, self.pixel_bytes = self.output.encoding, self.output.pixel_bytes
         if isinstance(spec, WorldCamera):
             self.intrinsics = replace(self.intrinsics, distortion=spec.info_distortion)
             self.in_link = rf.compose(self.in_link,
@@ -191,12 +199,7 @@ class CameraRunner(RunningSensor):
                                             use_egl=physics.egl or physics.gui)
         position, rotation = self.pose()
         rgb, metres = self._renderer.render(position, rotation @ LINK_TO_OPTICAL, depth=depth)
-        if self._lens is not None:
-            if self._map is None:
-                self._map = DistortionMap(self._lens, self.camera_spec.width,
-                                          self.camera_spec.height)
-            rgb = self._map.apply(rgb)
-        return converted(rgb, self.image_format), metres
+        return self.output.pixels(rgb), metres
 
     def image(self) -> np.ndarray:
         """The image's pixels seen now: (height, width, 3) uint8 for rgb8."""
@@ -394,10 +397,12 @@ RUNNERS: Tuple[Tuple[type, Callable], ...] = (
 class WorldSensors:
     """The running sensors of the world's models, in the models' order."""
 
-    def __init__(self, physics: WorldPhysics, models, seed: int = 0):
-        """``models``: the world's ModelRegistry, followed at every output time."""
+    def __init__(self, physics: WorldPhysics, models, seed: int = 0, robots=None):
+        """``models``: the world's ModelRegistry, followed at every output time; ``robots``:
+        the SimRobots by model name (Simulation.robots, filled as robots come)."""
         self.physics = physics
         self.registry = models
+        self.robots = robots if robots is not None else {}
         self.seed = seed
         self.sensors: List[RunningSensor] = []
         self.due_now: List[RunningSensor] = []     # those due at the last step that had any
@@ -431,15 +436,24 @@ class WorldSensors:
         return changed
 
     def _made_for(self, model, now_ns: int) -> List[RunningSensor]:
-        """The running sensors of ``model``'s links (an SdfModel's document's)."""
-        world = getattr(model, "world", None)
+        """The running sensors of ``model``'s links (an SdfModel's document's, a robot's
+        URDF's)."""
+        robot = self.robots.get(model.name)
+        if robot is not None and getattr(model, "robot_body", None) is robot.body:
+            specs = robot_sensor_specs(model.name, robot.namespace, robot.description,
+                                       robot.options.camera)
+        else:
+            robot = None
+            specs = getattr(getattr(model, "world", None), "sensors", ())
         made = []
-        for spec in getattr(world, "sensors", ()):
+        for spec in specs:
             if model_of(spec.link) != model.name:
                 continue
             runner = runner_for(spec)
             sensor = runner(spec, model, self.physics,
                             np.random.default_rng([self.seed, self._made]))
+            if robot is not None:
+                sensor.namespace, sensor.ray_mask = robot.namespace, robot.body.ray_mask
             self._made += 1
             sensor.schedule.reset(now_ns)
             if isinstance(sensor, BumperRunner):

@@ -1,15 +1,14 @@
-"""Spawn and delete of Gazebo's world API: a model (SDF or plain URDF) or a robot (a URDF with
-plugins) built in the world, in three steps (spawn_pose, prepare_spawn, spawn_prepared), and
-removed; a deleted model's bodies are parked for the next spawn of the same text
-(body_pool.BodyPool: pybullet frees little of a removed body)."""
+"""Spawn and delete of Gazebo's world API: a model (SDF, or a plain URDF converted to SDF as
+Gazebo converts it: spawn_request) or a robot (a URDF with plugins) built in the world, in
+three steps (spawn_pose, prepare_spawn, spawn_prepared), and removed; a deleted model's bodies
+are parked for the next spawn of the same text (body_pool.BodyPool: pybullet frees little of a
+removed body)."""
 import os
 import tempfile
 from dataclasses import replace
 from typing import List
 
 from ...errors import RequestError
-from ..engine import urdf_loader
-from ..engine.bodies import Body
 from ..engine.bullet_shapes import ShapeBudgetError
 from ..engine.world_bullet import build_world, place_world_bodies, reused_world_bodies
 from ..files.urdf.urdf_meshes import absolute_meshes, mesh_paths, urdf_text
@@ -17,9 +16,8 @@ from . import reference_frames as rf
 from .reference_frames import Pose
 from .request_checks import check_names
 from .spawn_request import SpawnRequest, placed, prepare_spawn
-from .world_models import (ENTITY_EXISTS, SPAWN_FAILURE, UrdfModel, WorldModel,
-                           check_model_name, held, models_of_world, spawn_failure,
-                           spawn_refusal, urdf_model)
+from .world_models import (ENTITY_EXISTS, SPAWN_FAILURE, check_model_name, models_of_world,
+                           spawn_failure)
 
 
 class SpawnRequests:
@@ -65,8 +63,9 @@ class SpawnRequests:
         """Step 3, in the loop: build what ``spawn_request.prepare_spawn`` read and checked
         (step 2, anywhere) at world ``pose``: bounded work, the pybullet calls only. Returns
         the building's warning lines (an SDF model's textures that the texture budget halved
-        or that cannot be read now; what a plain URDF left out, RobotDescription.warnings: a
-        robot's are its own, SimRobot.warnings), for the caller to log."""
+        or that cannot be read now; what a plain URDF left out, RobotDescription.warnings,
+        and what its conversion warns of: a robot's are its own, SimRobot.warnings), for the
+        caller to log."""
         name = request.name
         if name in self.models:       # taken since step 1
             raise RequestError(ENTITY_EXISTS)
@@ -76,24 +75,21 @@ class SpawnRequests:
             self._add_robot(request, pose, robot_namespace)
             return warnings
         pool = self.sim.physics.body_pool
-        if request.world is not None:
-            key = ("sdf", request.digest)
-            reused = pool.take(key)
-            if reused is not None:
-                bodies = reused_world_bodies(request.world, reused)
-                place_world_bodies(request.world, bodies, client)
-            else:
-                try:
-                    bodies = build_world(request.world, client, warnings)
-                except ShapeBudgetError as err:
-                    raise spawn_failure(str(err)) from None
-                pool.remember(list(bodies.values()))
-            model = models_of_world(request.world, bodies, client)[0]
-            built = list(dict.fromkeys(bodies.values()))
+        key = self._pool_key(request)
+        reused = pool.take(key)
+        if reused is not None:
+            bodies = reused_world_bodies(request.world, reused)
+            place_world_bodies(request.world, bodies, client)
         else:
-            model = self._load_urdf(request, pose)
-            key, built = self._urdf_key(request), [model.parts[0].body.uid]
-            warnings += request.description.warnings
+            try:
+                bodies = build_world(request.world, client, warnings)
+            except ShapeBudgetError as err:
+                raise spawn_failure(str(err)) from None
+            pool.remember(list(bodies.values()))
+        model = models_of_world(request.world, bodies, client)[0]
+        built = list(dict.fromkeys(bodies.values()))
+        if request.description is not None:
+            warnings[:0] = list(request.description.warnings) + list(request.notes)
         self.models.add(model)
         self._spawned[name] = (key, built)
         return warnings
@@ -111,35 +107,12 @@ class SpawnRequests:
             os.unlink(path)
 
     @staticmethod
-    def _urdf_key(request: SpawnRequest) -> tuple:
-        """The BodyPool key of a plain URDF's body: its text's digest (relative meshes: from
-        the working directory)."""
-        return ("urdf", request.digest, os.getcwd())
-
-    def _load_urdf(self, request: SpawnRequest, pose: Pose) -> WorldModel:
-        """A model of the plain URDF of ``request`` loaded at ``pose``, written for pybullet
-        one element a line (urdf_meshes.bullet_urdf_text: it cuts long lines), with a fixed
-        base where Gazebo holds it in place (world_models.held)."""
-        client = self.sim.physics.client
-        name = request.name
-        description = request.description
-        fixed = held(description)
-        with spawn_refusal():   # meshes as pybullet loads them (urdf_meshes; prepared: cached)
-            urdf = request.bullet_urdf()
-        pool = self.sim.physics.body_pool
-        reused = pool.take(self._urdf_key(request))
-        if reused:
-            urdf_loader.setup_movable(client, reused[0], fixed)
-            body = Body(client, reused[0])
-        else:
-            with spawn_refusal():
-                body = urdf_loader.load_movable(client, urdf, fixed)
-            pool.remember([body.uid])
-        model = urdf_model(UrdfModel, name, body, spawn_pose=pose,
-                           collisions=description.collision_names(), urdf=urdf,
-                           description=description)
-        model.set_state(pose, rf.ZERO_TWIST)
-        return model
+    def _pool_key(request: SpawnRequest) -> tuple:
+        """The BodyPool key of a spawned model's bodies: its text's digest (a URDF's relative
+        meshes are from the working directory)."""
+        if request.description is not None:
+            return ("urdf", request.digest, os.getcwd())
+        return ("sdf", request.digest)
 
     def delete(self, name: str) -> None:
         check_names("DeleteModel: ", model_name=name)

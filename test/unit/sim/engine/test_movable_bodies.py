@@ -184,3 +184,60 @@ def test_a_spawned_jointed_model_deleted_and_spawned_again_swings_the_same():
     sim.close()
     assert np.allclose(runs[0], runs[1], atol=1e-9)
     assert abs(runs[0][0][2] - 1.005) < 1e-3          # the hinge at 2 m, the bob 0.995 below
+
+
+def test_one_top_speed_a_body_the_fastest_of_its_joints_limits():
+    from tutorial_turtlebot.sim.engine.movable_bodies import _top_speed
+    from tutorial_turtlebot.sim.files.world_types import Joint
+
+    def joint(kind, velocity):
+        return Joint("j", kind, "m::a", "m::b", (0.0,) * 6, velocity=velocity)
+
+    assert _top_speed([joint("revolute", 0.5), joint("prismatic", 2.0)]) == 2.0
+    assert _top_speed([joint("revolute", 0.5), joint("fixed", -1.0)]) == 0.5
+    # one joint without a limit: no cap that would hold it (pybullet keeps one per body)
+    assert _top_speed([joint("revolute", 0.5), joint("continuous", -1.0)]) is None
+    assert _top_speed([joint("fixed", -1.0)]) is None
+
+
+def test_a_joints_velocity_limit_holds_its_swing(tmp_path):
+    text = open(os.path.join(JOINTS, "pendulum.world")).read().replace(
+        "<axis><xyz>0 1 0</xyz></axis>",
+        "<axis><xyz>0 1 0</xyz><limit><velocity>0.05</velocity></limit></axis>")
+    assert "<velocity>0.05</velocity>" in text
+    world = tmp_path / "slow_pendulum.world"
+    world.write_text(text)
+    sim = Simulation(SimConfig(world=str(world), spawn_robot=False))
+    try:
+        xs = []
+        for _ in range(STEPS_PER_S):
+            sim.step()
+            xs.append(links(sim, "pendulum")["pendulum::bob"][0][0])
+    finally:
+        sim.close()
+    speeds = np.abs(np.diff(xs)) * STEPS_PER_S       # m/s of the bob, 1 m out: rad/s
+    assert speeds.max() < 0.05 * 1.05
+    assert xs[-1] - xs[0] > 0.03                     # it swings, at its top speed
+
+
+def test_a_jointed_link_swings_with_the_files_inertia_not_its_shapes(tmp_path):
+    # the bob's own moment 0.5 kg m^2 (its 5 cm sphere alone would give 0.001): the period
+    # grows from 2.007 s to 2 pi sqrt((1 + 0.5) / 9.8) = 2.458 s
+    text = open(os.path.join(JOINTS, "pendulum.world")).read().replace(
+        "<ixx>0.001</ixx><iyy>0.001</iyy><izz>0.001</izz>",
+        "<ixx>0.5</ixx><iyy>0.5</iyy><izz>0.5</izz>")
+    assert "<iyy>0.5</iyy>" in text
+    world = tmp_path / "heavy_bob.world"
+    world.write_text(text)
+    sim = Simulation(SimConfig(world=str(world), spawn_robot=False))
+    try:
+        ts, xs = [], []
+        for _ in range(12 * STEPS_PER_S):
+            sim.step()
+            xs.append(links(sim, "pendulum")["pendulum::bob"][0][0])
+            ts.append(sim.time)
+    finally:
+        sim.close()
+    period = float(np.mean(np.diff(upward_crossings(np.array(ts), np.array(xs)))))
+    expected = 2 * math.pi * math.sqrt((1.0 + 0.5) / 9.8)
+    assert abs(period - expected) / expected < 0.02

@@ -1,4 +1,4 @@
-"""WorldPhysics.surfaces_below and WorldPhysics.overlaps (engine/physics.py), what
+"""WorldPhysics.surfaces_below, solids_at and overlaps (engine/physics.py), what
 sim/world/spawn_check.py lands robots and names overlaps with: rays straight down on the
 collision geometry as pybullet has it, and Bullet's penetration depths. On the world of raised
 floors test/fixtures/worlds/floors/ (make_floor_fixtures.py). No ROS master."""
@@ -76,5 +76,23 @@ def test_overlaps_name_the_collider_its_depth_and_top(physics):
         pybullet.resetBasePositionAndOrientation(body, (3.0, 3.0, 0.1), (0, 0, 0, 1),
                                                  physicsClientId=physics.client)
         assert physics.overlaps(body, 0.01) == []           # resting on the ground
+    finally:
+        pybullet.removeBody(body, physicsClientId=physics.client)
+
+
+def test_solids_at_finds_the_static_solid_holding_each_point(physics):
+    body = cube(physics, (3.0, 3.0, 0.1), 0.1)
+    try:
+        inside = physics.solids_at(np.array([
+            (0.0, 0.0, 0.1), (0.7, 0.0, 0.001), (24.0, 0.0, 0.05), (30.0, 0.0, 0.03),
+            (36.0, 0.0, 0.3), (42.0, 0.0, 0.5), (3.0, 3.0, -0.02)]))
+        # the floor box (to 1 mm of its bottom), cylinder, polyline, table top, wall, ground
+        assert all(len(holders) == 1 for holders in inside), inside
+        assert len(set(inside)) == 6 and inside[0] == inside[1]      # the floor box twice
+        assert physics.solids_at(np.array([(0.0, 0.0, 0.19)])) == [inside[0]]   # on its face
+        # 1 mm above the box, the closed slab mesh, under the table, the movable cube
+        assert physics.solids_at(np.array([
+            (0.0, 0.0, 0.191), (6.0, 0.0, 0.001), (36.0, 0.0, 0.1),
+            (3.0, 3.0, 0.1)])) == [frozenset()] * 4
     finally:
         pybullet.removeBody(body, physicsClientId=physics.client)

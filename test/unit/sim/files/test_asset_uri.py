@@ -97,7 +97,9 @@ def test_file_uris_and_paths_are_relative_to_the_naming_file(tmp_path):
     with pytest.raises(AssetError, match="b.stl not found"):
         resolve_uri("meshes/b.stl", str(tmp_path))
     with pytest.raises(AssetError, match="only model://"):
-        resolve_uri("http://example.com/a.dae", str(tmp_path))
+        resolve_uri("ftp://example.com/a.dae", str(tmp_path))
+    with pytest.raises(AssetNotFound, match="not a Fuel model or model file URL"):
+        resolve_uri("http://example.com/a.dae", str(tmp_path))   # Gazebo: the mesh left out
 
 
 def test_model_config_picks_the_newest_sdf_gazebo_reads(tmp_path):

@@ -213,16 +213,15 @@ def test_a_movable_model_is_no_floor(in_room):
         wc.delete("crate")
 
 
-def test_a_floor_higher_than_the_robot_is_an_overlap_with_its_top_as_z_pos():
-    """A Waffle's top is 0.141 m: the 0.19 m floor box is over its head at z 0. Nothing tells
-    a floor that high from a table here, so it stays where asked, and the warning proposes
-    z_pos 0.190."""
+def test_a_floor_higher_than_the_robot_holding_its_footprint_is_stood_on():
+    """A Waffle's top is 0.141 m: at z 0 the 0.19 m floor box holds its whole body, over its
+    whole footprint. It stands on top, as at z_pos 0.19 (test_spawn_solid_floor.py has more)."""
     (x, y, yaw), top = RAISED["floor_box"]
     sim = floors_sim(x, y, yaw, model="waffle")
     try:
-        assert sim.spawn[2] == 0.0
-        (warning,) = sim.robot.warnings
-        assert "floor_box" in warning and "z_pos 0.190" in warning
+        assert sim.spawn[2] == pytest.approx(top, abs=0.002)
+        assert sim.robot.warnings == []
+        assert_on(sim, top, "waffle at z_pos 0")
     finally:
         sim.close()
     sim = floors_sim(x, y, yaw, model="waffle", z=top)
@@ -317,6 +316,10 @@ class RaysDown:
     def surfaces_below(self, points, top, bottom, static_only=True, lowest=False):
         self.asked.append((np.asarray(points), top, bottom))
         return np.full(len(points), self.floor if bottom <= self.floor <= top else np.nan)
+
+    def solids_at(self, points):
+        """No solid: the floor is a surface."""
+        return [frozenset()] * len(points)
 
 
 def test_the_rays_run_from_the_robot_top_to_the_requested_z_over_its_footprint():

@@ -38,7 +38,7 @@ URDF = """<?xml version="1.0"?>
 def test_sdf_model_renamed_and_placed_with_its_inertial_and_friction():
     request = parse_spawn("crate", BOX, at(1.0, 2.0, yaw=math.pi / 2))
     world = request.world
-    assert request.urdf is None and world.models == ("crate",)
+    assert request.description is None and world.models == ("crate",)
     model = world.model("crate")
     assert not model.static and [link.scoped for link in model.links] == ["crate::link"]
     assert model.pose[:3] == pytest.approx((1.0, 2.0, 0.1))    # initial_pose * <pose>
@@ -73,13 +73,23 @@ def test_urdf_with_plugins_is_a_robot():
     Simulation.add_robot (the plugins are checked there)."""
     xml = URDF.replace("</robot>", "<gazebo><plugin name='p' filename='libx.so'/></gazebo></robot>")
     request = parse_spawn("r", xml, kind="urdf")
-    assert request.robot == xml and request.urdf is None and request.world is None
+    assert request.robot == xml and request.world is None
 
 
 def test_urdf_without_plugins():
+    """A plain URDF is converted to SDF as Gazebo converts it (urdf_to_sdf) and read as an SDF
+    spawn: renamed; its links without <inertial> are not modelled (one note says so)."""
     request = parse_spawn("thing", URDF, kind="urdf")
-    assert request.world is None and 'name="thing"' in request.urdf
-    assert parse_spawn("thing", URDF, kind="sdf").urdf    # spawn_sdf_model takes URDF too
+    assert request.robot is None and request.world.models == ("thing",)
+    assert request.world.model("thing").links == () and request.world.shapes == ()
+    (note,) = request.notes
+    assert "link 'base' has no mass" in note
+    massive = URDF.replace("<link name=\"base\">", "<link name=\"base\"><inertial><mass "
+                           "value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" "
+                           "ixz=\"0\" iyz=\"0\"/></inertial>")
+    world = parse_spawn("thing", massive, kind="sdf").world   # spawn_sdf_model takes URDF too
+    assert [link.scoped for link in world.model("thing").links] == ["thing::base"]
+    assert [s.name for s in world.shapes] == ["thing::base::base_collision"]
 
 
 @pytest.mark.parametrize("xml, words", [
@@ -169,11 +179,12 @@ def test_too_many_shapes_are_refused(monkeypatch):
     monkeypatch.setattr(spawn_request, "MAX_SPAWN_SHAPES", 10)
     with pytest.raises(RequestError, match="shapes .*: 11, more than the 10"):
         spawn_request.prepare_spawn("p", polyline_sdf(13))     # counted as 13 - 2 triangles
-    links = "".join('<link name="l%d"><collision><geometry><sphere radius="0.1"/></geometry>'
-                    '</collision></link>' % k for k in range(11))
+    links = "".join('<link name="l%d"><inertial><mass value="1"/><inertia ixx="1" iyy="1" '
+                    'izz="1" ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry><sphere '
+                    'radius="0.1"/></geometry></collision></link>' % k for k in range(11))
     joints = "".join('<joint name="j%d" type="fixed"><parent link="l0"/><child link="l%d"/>'
                      '</joint>' % (k, k) for k in range(1, 11))
-    with pytest.raises(RequestError, match="shapes .*: 11, more than the 10"):
+    with pytest.raises(RequestError, match="more than 10 collisions and visuals"):
         spawn_request.prepare_spawn("u", '<robot name="r">%s%s</robot>' % (links, joints))
 
 

@@ -28,6 +28,8 @@ def fixture(name):
 
 
 ENV = fixture("static_env.urdf")
+with open(os.path.join(ANCHORS, os.pardir, "urdf_pendulum", "pendulum.urdf")) as _f:
+    PENDULUM = _f.read()
 POST = fixture("world_anchored.urdf")
 PLAIN_ENV = ENV.replace("<static>true</static>", "")
 # a turntable on a revolute joint to the world: it turns about that joint and goes nowhere
@@ -48,8 +50,9 @@ def moved(a, b):
                    np.max(np.abs(np.add(a[1], b[1])))))
 
 
-def uid(model):
-    return model.parts[0].body.uid
+def uids(model):
+    """The model's pybullet bodies (a static one is a body per shape, as an SDF model's)."""
+    return set(model.body_ids())
 
 
 def test_static_and_world_anchored_models_stay_while_a_plain_one_falls(empty):
@@ -106,15 +109,16 @@ def test_a_static_model_collides_as_a_world_body_and_its_mesh_as_triangles(empty
     wc.spawn("plain", PLAIN_ENV, at(-3.0, 0.0), kind="urdf")
     client = sim.physics.client
     env = sim.models.get("env")
-    assert collision_filters.colliders(client)[(uid(env), -1)] == (
-        WORLD_COLLISION_GROUP, WORLD_COLLISION_MASK)
+    for body in uids(env):
+        assert collision_filters.colliders(client)[(body, -1)] == (
+            WORLD_COLLISION_GROUP, WORLD_COLLISION_MASK)
     # down through the open trough (floor 0.5 m up, walls to 1.5 m): its floor, not its top
     ray = client.rayTest((4.5, 0.0, 3.0), (4.5, 0.0, -1.0),
                          collisionFilterMask=WORLD_COLLISION_GROUP)[0]
-    assert ray[0] == uid(env) and ray[3][2] == pytest.approx(0.5, abs=0.01)
+    assert ray[0] in uids(env) and ray[3][2] == pytest.approx(0.5, abs=0.01)
     # a movable model's trough collides as its hull: the ray stops at the walls' top
     ray = client.rayTest((-1.5, 0.0, 3.0), (-1.5, 0.0, -1.0))[0]
-    assert ray[0] == uid(sim.models.get("plain")) and ray[3][2] == pytest.approx(1.5, abs=0.01)
+    assert ray[0] in uids(sim.models.get("plain")) and ray[3][2] == pytest.approx(1.5, abs=0.01)
 
 
 def test_a_robot_driven_into_a_static_wall_stops_and_its_laser_sees_it(empty):
@@ -132,7 +136,7 @@ def test_a_robot_driven_into_a_static_wall_stops_and_its_laser_sees_it(empty):
 def test_a_static_model_teleports_resets_and_comes_back_from_the_pool(empty):
     sim, wc = empty
     wc.spawn("env", ENV, at(3.0, 0.0), kind="urdf")
-    first = uid(sim.models.get("env"))
+    first = uids(sim.models.get("env"))
     wc.set_model_state("env", at(3.0, 2.0, 0.5, yaw=math.pi / 2), ((0, 0, 0), (0, 0, 0)))
     run(sim, 1.0)
     assert moved(wc.get_model_state("env")[0], at(3.0, 2.0, 0.5, yaw=math.pi / 2)) < STILL
@@ -142,9 +146,10 @@ def test_a_static_model_teleports_resets_and_comes_back_from_the_pool(empty):
     wc.delete("env")
     wc.spawn("env2", ENV, at(-3.0, 0.0, 1.0), kind="urdf")   # the same text: the parked body
     again = sim.models.get("env2")
-    assert uid(again) == first and again.static
-    assert collision_filters.colliders(sim.physics.client)[(first, -1)] == (
-        WORLD_COLLISION_GROUP, WORLD_COLLISION_MASK)
+    assert uids(again) == first and again.static
+    for body in first:
+        assert collision_filters.colliders(sim.physics.client)[(body, -1)] == (
+            WORLD_COLLISION_GROUP, WORLD_COLLISION_MASK)
     run(sim, 2.0)
     assert moved(wc.get_model_state("env2")[0], at(-3.0, 0.0, 1.0)) < STILL
 
@@ -172,4 +177,32 @@ def test_a_missing_mesh_is_one_warning_and_the_rest_of_the_model_is_there(empty)
     assert wc.model_properties("env").body_names == ["base", "gate"]
     client = sim.physics.client                   # the crate's mesh is there: a ray hits it
     ray = client.rayTest((3.0, -2.0, 2.0), (3.0, -2.0, -1.0))[0]
-    assert ray[0] == uid(sim.models.get("env")) and ray[3][2] == pytest.approx(0.5, abs=0.01)
+    assert ray[0] in uids(sim.models.get("env")) and ray[3][2] == pytest.approx(0.5, abs=0.01)
+
+
+def test_a_pendulum_on_a_world_root_swings_under_gravity_and_comes_back_from_the_pool(empty):
+    """A plain URDF is the SDF model Gazebo makes of it (urdf_to_sdf): the weight fixed to the
+    bob is lumped into it with Gazebo's names, the revolute joint is simulated: the bob,
+    level at first, swings down under gravity while the model stays joined to the world; a
+    second spawn of the same text takes the parked bodies and swings again."""
+    sim, wc = empty
+    assert wc.spawn("pendulum", PENDULUM, at(1.0, 2.0), kind="urdf") == []
+    props = wc.model_properties("pendulum")
+    assert props.body_names == ["post", "bob"] and props.joint_names == ["world_joint", "swing"]
+    assert props.geom_names == ["post_collision", "bob_collision",
+                                "bob_fixed_joint_lump__weight_collision_1"]
+    assert wc.get_link_properties("pendulum::bob").mass == pytest.approx(1.0)   # + weight
+    bob = wc.get_link_state("pendulum::bob")[0]
+    assert bob[0] == pytest.approx((1.0, 2.1, 1.0), abs=1e-6)
+    run(sim, 0.3)
+    angle = wc.get_joint_properties("pendulum::swing").position[0]
+    assert angle > 0.3                      # about +y: the bob's end goes down
+    assert wc.get_link_state("pendulum::bob")[0][0] == pytest.approx((1.0, 2.1, 1.0), abs=1e-4)
+    assert moved(wc.get_model_state("pendulum")[0], at(1.0, 2.0)) < STILL
+    first = uids(sim.models.get("pendulum"))
+    wc.delete("pendulum")
+    wc.spawn("again", PENDULUM, at(-1.0, 0.0), kind="urdf")
+    assert uids(sim.models.get("again")) == first
+    assert wc.get_joint_properties("again::swing").position[0] == pytest.approx(0.0, abs=1e-9)
+    run(sim, 0.3)
+    assert wc.get_joint_properties("again::swing").position[0] == pytest.approx(angle, abs=0.02)

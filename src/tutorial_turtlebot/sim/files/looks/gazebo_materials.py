@@ -3,7 +3,7 @@ as a visual's ``<material><script><name>`` names them. Plain data: no ROS, no py
 
 Colours are (r, g, b, a) in 0..1.
 """
-from typing import Dict
+from typing import Dict, FrozenSet
 
 from ..world_types import Rgba
 
@@ -74,3 +74,12 @@ GAZEBO_MATERIALS: Dict[str, Rgba] = {
     "Gazebo/Lanes": (0.35, 0.35, 0.35, 1.0),
     "Gazebo/CloudySky": (0.62, 0.70, 0.82, 1.0),
 }
+
+# The materials above that Gazebo draws with a texture (their colour: its mean). A <diffuse>
+# given beside one tints that texture, so it multiplies the mean colour (sdf_looks).
+GAZEBO_TEXTURED: FrozenSet[str] = frozenset((
+    "Gazebo/Wood", "Gazebo/WoodFloor", "Gazebo/WoodPallet", "Gazebo/LightWood", "Gazebo/Bricks",
+    "Gazebo/CeilingTiled", "Gazebo/PaintedWall", "Gazebo/Rockwall", "Gazebo/Grass",
+    "Gazebo/Leaf", "Gazebo/Trunk", "Gazebo/Road", "Gazebo/Asphalt", "Gazebo/Residential",
+    "Gazebo/Tertiary", "Gazebo/Secondary", "Gazebo/Primary", "Gazebo/Motorway", "Gazebo/Footway",
+    "Gazebo/Pedestrian", "Gazebo/Lanes", "Gazebo/CloudySky"))

@@ -9,7 +9,8 @@ pycollada applies neither unit nor up axis by itself.
 
 A part's colour is its material's ``<diffuse><color>``; a textured diffuse gives None and the
 texture, found by texture_images.find_texture, with the primitive's first set of texture
-coordinates (Gazebo's Collada loader reads only the first ``TEXCOORD`` input). The texture may
+coordinates (Gazebo's Collada loader reads only the first ``TEXCOORD`` input); each part's
+submesh name is Gazebo's (``submesh_names``: a node's name). The texture may
 be named through the ``<newparam>`` surface -> sampler2D chain or, as 3ds Max's exporter
 writes it, straight by the image's id (``<texture texture="Map #N-image">``). What Gazebo does
 not read is left out before pycollada sees it: XML comments and processing instructions
@@ -26,9 +27,11 @@ from .mesh_types import MeshPart, Rgba
 from .texture_images import find_texture
 
 
-def read_collada(data: bytes, side_files: SideFiles) -> Tuple[np.ndarray, List[MeshPart]]:
+def read_collada(data: bytes, side_files: SideFiles,
+                 names: Optional[List[str]] = None) -> Tuple[np.ndarray, List[MeshPart]]:
     """(vertices, [MeshPart]) of a Collada file: unit and node transforms applied, not the up
-    axis. Faces and uvs not yet checked. pycollada's errors propagate."""
+    axis. Faces and uvs not yet checked. pycollada's errors propagate. ``names``: a list that
+    gets each part's submesh name, as Gazebo names it (``submesh_names``)."""
     import collada    # pycollada only for worlds with Collada meshes
     if data[:4] == b"PK\x03\x04":
         raise ValueError("it is a zip archive (a .zae); Gazebo reads .dae files of plain XML")
@@ -39,10 +42,11 @@ def read_collada(data: bytes, side_files: SideFiles) -> Tuple[np.ndarray, List[M
         geometries = list(doc.scene.objects("geometry"))
     else:   # no visual scene: every geometry as written
         geometries = [g.bind(np.identity(4), {}) for g in doc.geometries]
+    geometry_names = submesh_names(doc.scene) if doc.scene is not None else []
     unit = doc.assetInfo.unitmeter or 1.0
     chunks, parts, count = [], [], 0
     textures: Dict[str, Tuple[Optional[str], Optional[str]]] = {}   # image path -> found
-    for geometry in geometries:
+    for number, geometry in enumerate(geometries):
         for primitive in geometry.primitives():
             if hasattr(primitive, "triangleset"):       # polylist, polygons
                 primitive = primitive.triangleset()
@@ -54,9 +58,37 @@ def read_collada(data: bytes, side_files: SideFiles) -> Tuple[np.ndarray, List[M
             uvs = _uvs(primitive) if texture is not None else None
             parts.append(MeshPart(np.asarray(primitive.vertex_index) + count,
                                   _colour(primitive.material), uvs, texture, problem))
+            if names is not None:
+                names.append(geometry_names[number] if number < len(geometry_names) else "")
             count += len(chunks[-1])
     vertices = np.concatenate(chunks) * unit if chunks else np.zeros((0, 3))
     return vertices, parts
+
+
+def submesh_names(scene) -> List[str]:
+    """The submesh name of each geometry ``scene.objects("geometry")`` gives, in its order, as
+    Gazebo 11's ColladaLoader names them: reading a ``<node>``, its ``name`` (where it has one)
+    becomes the current name; its child nodes are read next, then its own geometries, which
+    take the current name then (a nameless node's geometries: the last name met before)."""
+    from collada import scene as collada_scene
+    current = [""]
+
+    def walk(node) -> List[str]:
+        """The names of ``node``'s geometries in document order (pycollada's)."""
+        node = getattr(node, "node", node)         # an <instance_node>: the node it names
+        xml = getattr(node, "xmlnode", None)
+        if xml is not None and xml.get("name"):
+            current[0] = xml.get("name")
+        entries: List[Optional[List[str]]] = []    # None: one own geometry, named at the end
+        for child in getattr(node, "children", ()):
+            if isinstance(child, collada_scene.GeometryNode):
+                entries.append(None)
+            elif isinstance(child, (collada_scene.Node, collada_scene.NodeNode)):
+                entries.append(walk(child))
+        own = current[0]
+        return [n for entry in entries for n in (entry if entry is not None else [own])]
+
+    return [n for node in scene.nodes for n in walk(node)]
 
 
 def as_gazebo_reads_it(data: bytes) -> bytes:

@@ -5,7 +5,7 @@ Plain data: no ROS, no pybullet, no file reading (the plugin modules beside it r
 Units: m, rad; lens coordinates are fractions of the image (0..1, x right, y down).
 """
 from dataclasses import dataclass
-from typing import Optional, Tuple
+from typing import Tuple
 
 from ...kinematics import ZERO_XYZ_RPY, XyzRpy
 from .robot_plugin_types import CameraSensor
@@ -37,16 +37,12 @@ class LensDistortion:
 
 @dataclass(frozen=True)
 class WorldCamera(CameraSensor):
-    """A world model's camera (the CameraSensor fields, plus): ``image_format`` Gazebo's
-    <format> (R8G8B8, L8, R16G16B16 ...); ``lens`` the image's distortion (None: none);
-    ``info_distortion`` CameraInfo's D (k1, k2, t1, t2, k3); ``trigger_topic`` the triggered
-    camera's (relative to camera_name); ``depth_16bit`` a depth image in 16UC1 mm instead of
-    32FC1 m; ``lens_pose`` a multicamera's <camera> in its sensor; ``cameras`` a multicamera's
-    cameras (left, right), each a WorldCamera of its own names."""
+    """A world model's camera (the CameraSensor fields, with its <format>, lens and D, plus):
+    ``trigger_topic`` the triggered camera's (relative to camera_name); ``depth_16bit`` a
+    depth image in 16UC1 mm instead of 32FC1 m; ``lens_pose`` a multicamera's <camera> in
+    its sensor; ``cameras`` a multicamera's cameras (left, right), each a WorldCamera of its
+    own names."""
 
-    image_format: str = "R8G8B8"
-    lens: Optional[LensDistortion] = None
-    info_distortion: Tuple[float, ...] = (0.0,) * 5
     trigger_topic: str = ""
     depth_16bit: bool = False
     lens_pose: XyzRpy = ZERO_XYZ_RPY

@@ -2,13 +2,14 @@
 tick of every ray, horizontal and vertical, in the sensor frame (devices.block_laser). Read into
 sensor_types.BlockLaserSensor with gazebo_ros_block_laser's defaults: topic and frame "/world",
 no noise. Its rate is the sensor's update_rate (the plugin's updateRate is read and not used,
-as in Gazebo). Runs on world models. Units: m, rad, Hz.
+as in Gazebo). Runs on world models and on robots (world.robot_sensors). Units: m, rad,
+Hz.
 """
 from .sensor_reader import NOISE
 from .sensor_types import BLOCK_LASER, BlockLaserSensor
 
 SENSORS = {BLOCK_LASER: "ray"}
-HOSTS = ("world",)
+HOSTS = ("robot", "world")
 PARAMS = frozenset({"robotNamespace", "topicName", "frameName", "gaussianNoise",
                     "hokuyoMinIntensity", "updateRate", "alwaysOn"})
 

@@ -3,7 +3,9 @@ a tick of the contacts of the sensor's ``<contact><collision>``s, read into ``Bu
 with gazebo_ros_bumper's defaults: topic "bumper_states" (in <robotNamespace>), frame "world".
 The collisions are scoped as Gazebo's ContactSensor scopes them: "model::link::collision". The
 rate is the sensor's <update_rate> (the plugin publishes at each of its updates; 0: every
-physics step). Runs on world models. Units: Hz.
+physics step). Runs on world models and on robots (world.robot_sensors: a robot's
+collisions are named as Gazebo's URDF conversion names them, its frame is its link).
+Units: Hz.
 """
 from dataclasses import dataclass
 from typing import Tuple
@@ -13,7 +15,7 @@ from ...kinematics import ZERO_XYZ_RPY, XyzRpy
 
 BUMPER = "libgazebo_ros_bumper.so"
 SENSORS = {BUMPER: "contact"}
-HOSTS = ("world",)
+HOSTS = ("robot", "world")
 PARAMS = frozenset({"robotNamespace", "bumperTopicName", "frameName", "updateRate", "alwaysOn"})
 
 

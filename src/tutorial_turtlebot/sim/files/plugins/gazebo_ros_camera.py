@@ -3,10 +3,10 @@ CameraInfo a tick. Read into robot_plugin_types.CameraSensor with the <camera>'s
 defaults (320 x 240 px, 1.047 rad, clip 0.1..100 m) and gazebo_ros_camera_utils' (cameraName
 empty, topics image_raw and camera_info, frame empty: a robot's is its link); the rate is the
 plugin's updateRate, else the sensor's update_rate. ``read_camera`` is the reading that
-gazebo_ros_openni_kinect shares. Runs on robots (rgb8, no distortion) and on world models,
-where ``read_world_camera`` (shared by the depth, multi- and triggered cameras) also reads the
-image <format> (camera_types.IMAGE_FORMATS) and the lens <distortion>, into a
-camera_types.WorldCamera. Units: m, rad, Hz, px.
+gazebo_ros_openni_kinect shares. Runs on robots and on world models, where
+``read_world_camera`` (shared by the depth, multi- and triggered cameras) reads into a
+camera_types.WorldCamera; both read the image <format> (camera_types.IMAGE_FORMATS), the lens
+<distortion> and CameraInfo's D the same way (``_image``). Units: m, rad, Hz, px.
 """
 from typing import Callable, Dict, Optional
 
@@ -21,9 +21,10 @@ HOSTS = ("robot", "world")
 PARAMS = frozenset({
     "robotNamespace", "alwaysOn", "updateRate", "cameraName", "frameName", "imageTopicName",
     "cameraInfoTopicName", "hackBaseline", "distortionK1", "distortionK2", "distortionK3",
-    "distortionT1", "distortionT2", "CxPrime", "Cx", "Cy", "focalLength", "borderCrop"})
+    "distortionT1", "distortionT2", "CxPrime", "Cx", "Cy", "focalLength", "borderCrop",
+    "autoDistortion"})
 # what gazebo_ros_camera_utils reads besides (a world camera's: honoured there)
-WORLD_PARAMS = PARAMS | {"triggerTopicName", "autoDistortion"}
+WORLD_PARAMS = PARAMS | {"triggerTopicName"}
 INFO_DISTORTION = ("distortionK1", "distortionK2", "distortionT1", "distortionT2",
                    "distortionK3")    # CameraInfo's D, in its order
 LENS_TERM = Bounds(-limits.MAX_SCALE, limits.MAX_SCALE)
@@ -79,17 +80,10 @@ def read_camera(reader, sensor, plugin, link: str, params, depth: bool = False,
     reader.check_params(plugin, filename, params)
     camera = sensor.find("camera")
     spec, image_format = _spec(reader, sensor, camera, plugin, depth)
-    if image_format != "R8G8B8":
-        reader.warn("%s: image format %r is not simulated; the images are R8G8B8 (rgb8)"
-                    % (reader.sensor_id(sensor), image_format),
-                    camera.find("image") if camera is not None else None)
-    distortion = [reader.number(plugin, key, 0.0, plugin) for key in (   # not simulated
-        "distortionK1", "distortionK2", "distortionK3", "distortionT1", "distortionT2")]
-    if any(distortion):
-        reader.warn("%s: lens distortion is not simulated; the images are undistorted"
-                    % reader.describe(plugin), plugin)
-    fields = extra(reader, plugin) if extra is not None else {}
-    return CameraSensor(spec=spec, **_names(reader, sensor, plugin, link, filename), **fields)
+    image = _image(reader, sensor, camera, plugin, image_format)
+    fields = extra(reader, plugin) if extra is not None else {}   # over the camera's own
+    return CameraSensor(spec=spec, **{**_names(reader, sensor, plugin, link, filename), **image,
+                                      **fields})
 
 
 def read_world_camera(reader, sensor, plugin, link: str, params, depth: bool = False,
@@ -104,6 +98,16 @@ def read_world_camera(reader, sensor, plugin, link: str, params, depth: bool = F
         reader.check_params(plugin, filename, params)
         camera = sensor.find("camera")
     spec, image_format = _spec(reader, sensor, camera, plugin, depth, baseline)
+    image = _image(reader, sensor, camera, plugin, image_format)
+    fields = dict(_names(reader, sensor, plugin, link, filename, suffix), **image)
+    fields.update(extra(reader, plugin) if extra is not None else {})    # the plugin's own
+    return WorldCamera(spec=spec, lens_pose=_lens_pose(reader, sensor, camera), **fields)
+
+
+def _image(reader, sensor, camera, plugin, image_format: str) -> Dict[str, object]:
+    """The CameraSensor fields of the <camera>'s <format> and <distortion> and of CameraInfo's
+    D (the plugin's distortionK1.., or the lens' with autoDistortion), a robot's as a world
+    model's."""
     if image_format not in IMAGE_FORMATS:
         reader.warn("%s: image format %r is not one Gazebo renders for gazebo_ros: the images "
                     "are R8G8B8 data labelled bgr8, as gazebo_ros_camera_utils publishes them"
@@ -112,10 +116,7 @@ def read_world_camera(reader, sensor, plugin, link: str, params, depth: bool = F
     info = tuple(reader.bounded(plugin, key, 0.0, plugin, LENS_TERM) for key in INFO_DISTORTION)
     if lens is not None and reader.flag(plugin, "autoDistortion", False, plugin):
         info = (lens.k1, lens.k2, lens.p1, lens.p2, lens.k3)
-    fields = _names(reader, sensor, plugin, link, filename, suffix)
-    fields.update(extra(reader, plugin) if extra is not None else {})    # the plugin's own
-    return WorldCamera(spec=spec, image_format=image_format, lens=lens, info_distortion=info,
-                       lens_pose=_lens_pose(reader, sensor, camera), **fields)
+    return dict(image_format=image_format, lens=lens, info_distortion=info)
 
 
 def _lens(reader, sensor, camera, plugin) -> Optional[LensDistortion]:

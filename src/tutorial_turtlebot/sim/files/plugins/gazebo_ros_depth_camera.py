@@ -4,7 +4,7 @@ camera's image and CameraInfo (default topics ir/image_raw and ir/camera_info), 
 by default) with its CameraInfo (depth/image_raw, depth/camera_info) and an organized
 PointCloud2 (points), all of one render and one stamp. Read by gazebo_ros_camera's
 ``read_world_camera`` into a camera_types.WorldCamera with ``spec.depth`` True. Runs on world
-models (a robot's depth camera is gazebo_ros_openni_kinect). Units: m.
+models and on robots (world.robot_sensors). Units: m.
 """
 from typing import Dict
 
@@ -13,7 +13,7 @@ from .gazebo_ros_camera import WORLD_PARAMS, read_world_camera
 from .sensor_reader import DISTANCE
 
 SENSORS = {DEPTH_CAMERA: "depth"}
-HOSTS = ("world",)
+HOSTS = ("robot", "world")
 PARAMS = WORLD_PARAMS | {
     "depthImageTopicName", "depthImageCameraInfoTopicName", "pointCloudTopicName",
     "pointCloudCutoff", "useDepth16UC1Format", "reflectanceTopicName", "normalsTopicName",

@@ -1,20 +1,22 @@
 """``libgazebo_ros_diff_drive.so``: the one reading of the diff drive (``read_diff_drive``),
-a URDF robot's (robot_plugins: its drive) and an SDF model's (a world file's or a spawned one:
-a model plugin of ``model_table``, ``read``), with Gazebo's defaults (gazebo_ros_diff_drive's
-getParameter ones) and every number held to its limit. An SDF model's wheels are its joints
-that <leftJoint> and <rightJoint> name (defaults left_joint, right_joint); one the model does
-not have is one warning and the plugin does not run (Gazebo's stops loading). Units: m, s,
-Hz, N*m, m/s^2.
+a model plugin and a drive (``table``): a URDF robot's (its drive, its wheel joints checked as
+the robot's) and an SDF model's (a world file's or a spawned one), with Gazebo's defaults
+(gazebo_ros_diff_drive's getParameter ones) and every number held to its limit. An SDF model's
+wheels are its joints that <leftJoint> and <rightJoint> name (defaults left_joint,
+right_joint); one the model does not have is one warning and the plugin does not run (Gazebo's
+stops loading). Units: m, s, Hz, N*m, m/s^2.
 """
 from dataclasses import dataclass, fields
 from typing import Collection, Optional
 
 from .. import limits
-from .model_plugin_values import NOT_RUN
+from .model_plugin_values import joints_found
 from .robot_plugin_types import DIFF_DRIVE, DiffDrivePlugin
 from .sensor_reader import Bounds
 
-FILES = (DIFF_DRIVE,)
+MODEL_FILES = (DIFF_DRIVE,)
+HOSTS = ("robot", "world")
+DRIVE = True
 # What gazebo_ros_diff_drive reads (or Gazebo reads and the sim has no use for)
 PARAMS = frozenset({
     "robotNamespace", "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame",
@@ -69,17 +71,15 @@ def read_diff_drive(reader, elem, name: str, wheel_joint) -> DiffDrivePlugin:
 
 
 def read(reader, plugin, model: str, links: Collection[str],
-         joints: Collection[str]) -> Optional[ModelDiffDrive]:
-    """An SDF model's diff drive, or None (one warning) when a wheel joint is not a joint of
-    the model (model_table's reader; its parameters checked already)."""
-    for tag, default in DEFAULT_JOINTS.items():
-        joint = reader.text(plugin, tag, default)
-        if joint not in joints:
-            reader.warn("%s: <%s> %r is not a joint of model %r (its joints: %s): %s, as in "
-                        "Gazebo" % (reader.describe(plugin), tag, joint, model,
-                                    ", ".join(joints) or "none", NOT_RUN), plugin)
-            return None
-    drive = read_diff_drive(reader, plugin, plugin.get("name", "").strip(),
-                            lambda elem, tag, default: reader.text(elem, tag, default))
+         joints: Collection[str]) -> Optional[DiffDrivePlugin]:
+    """A robot's diff drive (``reader.host`` "robot": robot_plugins' reader, whose
+    ``wheel_joint`` refuses a wrong wheel joint), or an SDF model's, or None (one warning) when
+    a wheel joint is not a joint of the model (its parameters checked already)."""
+    if reader.host == "robot":
+        return read_diff_drive(reader, plugin, plugin.get("name", "").strip(),
+                               reader.wheel_joint)
+    if not joints_found(reader, plugin, model, joints, DEFAULT_JOINTS):
+        return None
+    drive = read_diff_drive(reader, plugin, plugin.get("name", "").strip(), reader.wheel_joint)
     return ModelDiffDrive(model=model, **{f.name: getattr(drive, f.name)
                                           for f in fields(DiffDrivePlugin)})

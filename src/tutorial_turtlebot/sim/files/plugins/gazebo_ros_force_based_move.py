@@ -12,6 +12,9 @@ from dataclasses import dataclass
 from .. import limits
 
 FORCE_BASED_MOVE = "libgazebo_ros_force_based_move.so"
+MODEL_FILES = (FORCE_BASED_MOVE,)
+HOSTS = ("robot", "world")
+DRIVE = True
 PARAMS = frozenset({"robotNamespace", "commandTopic", "odometryTopic", "odometryFrame",
                     "robotBaseFrame", "odometryRate", "publishOdometryTf",
                     "yaw_velocity_p_gain", "x_velocity_p_gain", "y_velocity_p_gain",
@@ -37,6 +40,7 @@ class ForceBasedMovePlugin:
     x_velocity_p_gain: float = 10000.0      # N per m/s
     y_velocity_p_gain: float = 10000.0      # N per m/s
     robot_namespace: str = ""
+    model: str = ""                       # an SDF model's name (a robot's drive: "")
 
     pose_covariance = POSE_COVARIANCE
 
@@ -45,11 +49,11 @@ class ForceBasedMovePlugin:
         return self.publish_odometry_tf
 
 
-def read(reader, elem, name: str) -> ForceBasedMovePlugin:
-    """The force-based move of the <plugin> ``elem`` (a robot_plugins reader's element)."""
-    reader.check_params(elem, FORCE_BASED_MOVE, PARAMS)
+def read(reader, elem, model: str, links, joints) -> ForceBasedMovePlugin:
+    """The force-based move of the <plugin> ``elem`` (a robot's or an SDF model's, its
+    parameters checked already)."""
     return ForceBasedMovePlugin(
-        name=name,
+        name=elem.get("name", "").strip(),
         command_topic=reader.topic(elem, "commandTopic", "cmd_vel"),
         odometry_topic=reader.topic(elem, "odometryTopic", "odom"),
         odometry_frame=reader.text(elem, "odometryFrame", "odom"),
@@ -59,4 +63,5 @@ def read(reader, elem, name: str) -> ForceBasedMovePlugin:
         yaw_velocity_p_gain=reader.bounded(elem, "yaw_velocity_p_gain", 100.0, elem, GAIN),
         x_velocity_p_gain=reader.bounded(elem, "x_velocity_p_gain", 10000.0, elem, GAIN),
         y_velocity_p_gain=reader.bounded(elem, "y_velocity_p_gain", 10000.0, elem, GAIN),
-        robot_namespace=reader.topic(elem, "robotNamespace", ""))
+        robot_namespace=reader.topic(elem, "robotNamespace", ""),
+        model=model if reader.host == "world" else "")

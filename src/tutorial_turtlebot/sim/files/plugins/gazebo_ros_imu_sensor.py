@@ -2,10 +2,12 @@
 the sensor's link (orientation in the world, REP 145; angular velocity and linear acceleration
 with gravity's reaction, +9.8 m/s^2 up at rest, in the sensor frame), read into
 ``ImuSensorPlugin`` with gazebo_ros_imu_sensor's defaults: topic "imu_data" in <robotNamespace>
-(else "/<model>"), updateRateHZ 1, gaussianNoise 0 (on every field, the quaternion's too),
+(else "/<model>"; a robot's: "" here, world.robot_sensors puts in the spawn's namespace or
+"/<model>"), updateRateHZ 1, gaussianNoise 0 (on every field, the quaternion's too),
 rpyOffset 0 (turns the orientation); the sensor's own ``<imu>`` noise (per axis: mean, stddev,
 bias_mean, bias_stddev) on the rates and the acceleration. Without <frameName> the plugin does
-not load (one warning), as in Gazebo. Runs on world models. Units: rad, rad/s, m/s^2, Hz.
+not load (one warning), as in Gazebo. Runs on world models and on robots. Units: rad,
+rad/s, m/s^2, Hz.
 """
 from dataclasses import dataclass
 from typing import Optional, Tuple
@@ -17,7 +19,7 @@ from .sensor_reader import NOISE, NOISE_MEAN, NOISE_TYPES
 
 IMU_SENSOR = "libgazebo_ros_imu_sensor.so"
 SENSORS = {IMU_SENSOR: "imu"}
-HOSTS = ("world",)
+HOSTS = ("robot", "world")
 PARAMS = frozenset({"robotNamespace", "topicName", "frameName", "updateRateHZ",
                     "gaussianNoise", "xyzOffset", "rpyOffset", "initialOrientationAsReference",
                     "alwaysOn", "updateRate"})
@@ -62,9 +64,9 @@ def read(reader, sensor, plugin, link: str) -> Optional[ImuSensorPlugin]:
     <frameName>."""
     reader.check_params(plugin, IMU_SENSOR, PARAMS)
     if plugin.find("frameName") is None:
-        reader.skip_plugin(plugin, sensor, "%s has no <frameName>: gazebo_ros_imu_sensor does "
-                                           "not load without one; %s"
-                           % (reader.describe(plugin), reader.without))
+        reader.skip_plugin(plugin, sensor, "%s is not simulated here: it has no <frameName>, "
+                                           "and gazebo_ros_imu_sensor does not load without one;"
+                                           " %s" % (reader.describe(plugin), reader.without))
         return None
     imu = sensor.find("imu")
     rpy = (0.0, 0.0, 0.0)
@@ -79,7 +81,7 @@ def read(reader, sensor, plugin, link: str) -> Optional[ImuSensorPlugin]:
         topic=reader.topic(plugin, "topicName", "imu_data"),
         robot_namespace=(reader.topic(plugin, "robotNamespace", "")
                          if plugin.find("robotNamespace") is not None
-                         else "/" + link.split("::", 1)[0]),
+                         else "/" + link.split("::", 1)[0] if reader.host == "world" else ""),
         rate=rate_of(reader.rate(sensor, "update_rate", 0.0, sensor),
                      reader.rate(plugin, "updateRateHZ", 1.0, plugin)),
         gaussian_noise=reader.bounded(plugin, "gaussianNoise", 0.0, plugin, NOISE),

@@ -11,7 +11,9 @@ from typing import Optional, Tuple
 from .model_plugin_values import NOT_RUN
 
 JOINT_STATE_PUBLISHER = "libgazebo_ros_joint_state_publisher.so"
-FILES = (JOINT_STATE_PUBLISHER,)
+MODEL_FILES = (JOINT_STATE_PUBLISHER,)
+HOSTS = ("robot", "world")
+DRIVE = False
 PARAMS = frozenset({"robotNamespace", "jointName", "updateRate", "alwaysOn"})
 
 

@@ -5,7 +5,7 @@ tick with one stamp, at each camera's own <pose> in the sensor. The right camera
 has the plugin's hackBaseline (P[3] = -f * baseline), the left's 0, as the plugin hard-codes
 them; both take the plugin's frameName. A <camera> named otherwise is one warning (the plugin
 leaves it unloaded). Read into a camera_types.WorldCamera whose ``cameras`` are the two.
-Runs on world models. Units: m.
+Runs on world models and on robots (world.robot_sensors). Units: m.
 """
 from dataclasses import replace
 
@@ -14,7 +14,7 @@ from .gazebo_ros_camera import WORLD_PARAMS, read_world_camera
 from .sensor_reader import BASELINE
 
 SENSORS = {MULTICAMERA: "multicamera"}
-HOSTS = ("world",)
+HOSTS = ("robot", "world")
 PARAMS = WORLD_PARAMS
 
 

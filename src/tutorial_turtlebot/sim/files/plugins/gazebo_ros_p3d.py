@@ -14,7 +14,9 @@ from .model_plugin_values import NOT_RUN, body_link, vector
 from .sensor_reader import NOISE, strip_slash
 
 P3D = "libgazebo_ros_p3d.so"
-FILES = (P3D,)
+MODEL_FILES = (P3D,)
+HOSTS = ("robot", "world")
+DRIVE = False
 PARAMS = frozenset({"robotNamespace", "bodyName", "topicName", "frameName", "xyzOffset",
                     "rpyOffset", "gaussianNoise", "updateRate", "alwaysOn"})
 WORLD_FRAMES = ("world", "map")      # <frameName>s that mean the world frame (and "/..." ones)

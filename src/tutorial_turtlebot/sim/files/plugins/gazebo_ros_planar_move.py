@@ -11,6 +11,9 @@ from dataclasses import dataclass
 from .drive_values import TIMEOUT
 
 PLANAR_MOVE = "libgazebo_ros_planar_move.so"
+MODEL_FILES = (PLANAR_MOVE,)
+HOSTS = ("robot", "world")
+DRIVE = True
 PARAMS = frozenset({"robotNamespace", "commandTopic", "odometryTopic", "odometryFrame",
                     "robotBaseFrame", "odometryRate", "cmdTimeout", "alwaysOn"})
 # gazebo_ros_planar_move's fixed pose covariance diagonal (x, y, z, roll, pitch, yaw)
@@ -29,20 +32,22 @@ class PlanarMovePlugin:
     odometry_rate: float = 20.0           # Hz of sim time; 0 = no odometry at all
     cmd_timeout: float = -1.0             # s of sim time; negative: a command is kept
     robot_namespace: str = ""
+    model: str = ""                       # an SDF model's name (a robot's drive: "")
 
     publish_odom_tf = True                # the odom -> base TF, with every odometry
     pose_covariance = POSE_COVARIANCE
 
 
-def read(reader, elem, name: str) -> PlanarMovePlugin:
-    """The planar move of the <plugin> ``elem`` (a robot_plugins reader's element)."""
-    reader.check_params(elem, PLANAR_MOVE, PARAMS)
+def read(reader, elem, model: str, links, joints) -> PlanarMovePlugin:
+    """The planar move of the <plugin> ``elem`` (a robot's or an SDF model's, its
+    parameters checked already)."""
     return PlanarMovePlugin(
-        name=name,
+        name=elem.get("name", "").strip(),
         command_topic=reader.topic(elem, "commandTopic", "cmd_vel"),
         odometry_topic=reader.topic(elem, "odometryTopic", "odom"),
         odometry_frame=reader.text(elem, "odometryFrame", "odom"),
         robot_base_frame=reader.text(elem, "robotBaseFrame", "base_footprint"),
         odometry_rate=reader.rate(elem, "odometryRate", 20.0, elem),
         cmd_timeout=reader.bounded(elem, "cmdTimeout", -1.0, elem, TIMEOUT),
-        robot_namespace=reader.topic(elem, "robotNamespace", ""))
+        robot_namespace=reader.topic(elem, "robotNamespace", ""),
+        model=model if reader.host == "world" else "")

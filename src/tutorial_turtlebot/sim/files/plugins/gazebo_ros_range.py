@@ -1,13 +1,14 @@
 """``libgazebo_ros_range.so`` on a ``<sensor type="ray">``: one sensor_msgs/Range a tick, the
 nearest of the sensor's rays (devices.range_sensor). Read into sensor_types.RangeSensor with
 gazebo_ros_range's defaults: topic "/range", frame "/world", radiation ultrasound, fov 0.05 rad,
-no noise, updateRate 0. Runs on world models. Units: m, rad, Hz.
+no noise, updateRate 0 (a robot's frame: its link). Runs on world models and on robots
+(world.robot_sensors). Units: m, rad, Hz.
 """
 from .sensor_reader import FIELD_OF_VIEW, NOISE
 from .sensor_types import RANGE, RangeSensor
 
 SENSORS = {RANGE: "ray"}
-HOSTS = ("world",)
+HOSTS = ("robot", "world")
 PARAMS = frozenset({"robotNamespace", "topicName", "frameName", "radiation", "fov",
                     "gaussianNoise", "updateRate", "alwaysOn"})
 

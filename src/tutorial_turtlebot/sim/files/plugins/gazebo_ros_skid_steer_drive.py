@@ -6,15 +6,24 @@ odom -> base TF only with ``broadcastTF``. Read into ``SkidSteerPlugin`` with
 gazebo_ros_skid_steer_drive's defaults. No ROS, no pybullet. Units: m, s, rad, Hz, N*m.
 """
 from dataclasses import dataclass
+from typing import Optional
 
 from .drive_values import COVARIANCE, TORQUE, WHEEL
+from .model_plugin_values import joints_found
 
 SKID_STEER = "libgazebo_ros_skid_steer_drive.so"
+MODEL_FILES = (SKID_STEER,)
+HOSTS = ("robot", "world")
+DRIVE = True
 PARAMS = frozenset({
     "robotNamespace", "broadcastTF", "leftFrontJoint", "rightFrontJoint", "leftRearJoint",
     "rightRearJoint", "wheelSeparation", "wheelDiameter", "torque", "commandTopic",
     "odometryTopic", "odometryFrame", "robotBaseFrame", "updateRate", "covariance_x",
     "covariance_y", "covariance_yaw", "alwaysOn"})
+
+# the joints it names (tag: Gazebo's default)
+JOINTS = {"leftFrontJoint": "left_front_joint", "rightFrontJoint": "right_front_joint",
+          "leftRearJoint": "left_rear_joint", "rightRearJoint": "right_rear_joint"}
 
 
 @dataclass(frozen=True)
@@ -39,6 +48,7 @@ class SkidSteerPlugin:
     covariance_yaw: float = 0.01
     broadcast_tf: bool = False            # the odom -> base TF
     robot_namespace: str = ""
+    model: str = ""                       # an SDF model's name (a robot's drive: "")
 
     @property
     def wheel_joints(self):
@@ -56,12 +66,14 @@ class SkidSteerPlugin:
         return (self.covariance_x, self.covariance_y, 1e12, 1e12, 1e12, self.covariance_yaw)
 
 
-def read(reader, elem, name: str) -> SkidSteerPlugin:
-    """The skid steer of the <plugin> ``elem`` (a robot_plugins reader's element)."""
-    reader.check_params(elem, SKID_STEER, PARAMS)
+def read(reader, elem, model: str, links, joints) -> Optional[SkidSteerPlugin]:
+    """The skid steer of the <plugin> ``elem`` (a robot's or an SDF model's, its
+    parameters checked already)."""
+    if reader.host == "world" and not joints_found(reader, elem, model, joints, JOINTS):
+        return None
     number = reader.bounded
     return SkidSteerPlugin(
-        name=name,
+        name=elem.get("name", "").strip(),
         left_front_joint=reader.wheel_joint(elem, "leftFrontJoint", "left_front_joint"),
         right_front_joint=reader.wheel_joint(elem, "rightFrontJoint", "right_front_joint"),
         left_rear_joint=reader.wheel_joint(elem, "leftRearJoint", "left_rear_joint"),
@@ -78,4 +90,5 @@ def read(reader, elem, name: str) -> SkidSteerPlugin:
         covariance_y=number(elem, "covariance_y", 0.0001, elem, COVARIANCE),
         covariance_yaw=number(elem, "covariance_yaw", 0.01, elem, COVARIANCE),
         broadcast_tf=reader.flag(elem, "broadcastTF", False, elem),
-        robot_namespace=reader.topic(elem, "robotNamespace", ""))
+        robot_namespace=reader.topic(elem, "robotNamespace", ""),
+        model=model if reader.host == "world" else "")

@@ -9,10 +9,15 @@ Read into ``TricyclePlugin`` with gazebo_ros_tricycle_drive's defaults. No ROS, 
 Units: m, s, rad, Hz, N*m.
 """
 from dataclasses import dataclass
+from typing import Optional
 
 from .drive_values import ACCELERATION, STEERING_SPEED, TOLERANCE, TORQUE, WHEEL
+from .model_plugin_values import joints_found
 
 TRICYCLE = "libgazebo_ros_tricycle_drive.so"
+MODEL_FILES = (TRICYCLE,)
+HOSTS = ("robot", "world")
+DRIVE = True
 PARAMS = frozenset({
     "robotNamespace", "actuatedWheelDiameter", "encoderWheelDiameter", "wheelTorque",
     "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame", "updateRate",
@@ -21,6 +26,11 @@ PARAMS = frozenset({
     "publishWheelJointState", "steeringJoint", "actuatedWheelJoint", "encoderWheelLeftJoint",
     "encoderWheelRightJoint", "odometrySource", "rosDebugLevel", "alwaysOn"})
 POSE_COVARIANCE = (1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3)
+
+# the joints it names (tag: Gazebo's default)
+JOINTS = {"steeringJoint": "front_steering_joint", "actuatedWheelJoint": "front_wheel_joint",
+          "encoderWheelLeftJoint": "left_wheel_joint",
+          "encoderWheelRightJoint": "right_wheel_joint"}
 
 
 @dataclass(frozen=True)
@@ -50,14 +60,17 @@ class TricyclePlugin:
     publish_wheel_tf: bool = False          # not simulated (robot_state_publisher does it)
     publish_wheel_joint_state: bool = False
     robot_namespace: str = ""
+    model: str = ""                         # an SDF model's name (a robot's drive: "")
 
     publish_odom_tf = True
     pose_covariance = POSE_COVARIANCE
 
 
-def read(reader, elem, name: str) -> TricyclePlugin:
-    """The tricycle of the <plugin> ``elem`` (a robot_plugins reader's element)."""
-    reader.check_params(elem, TRICYCLE, PARAMS)
+def read(reader, elem, model: str, links, joints) -> Optional[TricyclePlugin]:
+    """The tricycle of the <plugin> ``elem`` (a robot's or an SDF model's, its
+    parameters checked already)."""
+    if reader.host == "world" and not joints_found(reader, elem, model, joints, JOINTS):
+        return None
     source = reader.text(elem, "odometrySource", "world")
     if source not in ("world", "encoder"):
         reader.fail(elem.find("odometrySource"), "must be world or encoder, got %r" % source,
@@ -65,7 +78,7 @@ def read(reader, elem, name: str) -> TricyclePlugin:
     number = reader.bounded
     acceleration = number(elem, "wheelAcceleration", 0.0, elem, ACCELERATION)
     return TricyclePlugin(
-        name=name,
+        name=elem.get("name", "").strip(),
         steering_joint=reader.wheel_joint(elem, "steeringJoint", "front_steering_joint"),
         actuated_wheel_joint=reader.wheel_joint(elem, "actuatedWheelJoint",
                                                 "front_wheel_joint"),
@@ -90,4 +103,5 @@ def read(reader, elem, name: str) -> TricyclePlugin:
         update_rate=reader.rate(elem, "updateRate", 100.0, elem),
         publish_wheel_tf=reader.flag(elem, "publishWheelTF", False, elem),
         publish_wheel_joint_state=reader.flag(elem, "publishWheelJointState", False, elem),
-        robot_namespace=reader.topic(elem, "robotNamespace", ""))
+        robot_namespace=reader.topic(elem, "robotNamespace", ""),
+        model=model if reader.host == "world" else "")

@@ -2,13 +2,14 @@
 gazebo_ros_camera that draws nothing until a std_msgs/Empty arrives on its trigger topic
 (``<cameraName>/<triggerTopicName>``, default image_trigger), then one image (and CameraInfo)
 per trigger, at the next physics step. Read by gazebo_ros_camera's ``read_world_camera`` into
-a camera_types.WorldCamera with ``trigger_topic`` set. Runs on world models.
+a camera_types.WorldCamera with ``trigger_topic`` set. Runs on world models and on robots
+(world.robot_sensors).
 """
 from .camera_types import TRIGGERED_CAMERA, WorldCamera
 from .gazebo_ros_camera import WORLD_PARAMS, read_world_camera
 
 SENSORS = {TRIGGERED_CAMERA: "camera"}
-HOSTS = ("world",)
+HOSTS = ("robot", "world")
 PARAMS = WORLD_PARAMS
 
 

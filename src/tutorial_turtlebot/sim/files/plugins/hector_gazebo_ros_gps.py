@@ -21,7 +21,9 @@ from .model_plugin_values import body_link
 from .sensor_reader import Bounds
 
 HECTOR_GPS = "libhector_gazebo_ros_gps.so"
-FILES = (HECTOR_GPS,)
+MODEL_FILES = (HECTOR_GPS,)
+HOSTS = ("robot", "world")
+DRIVE = False
 PARAMS = frozenset({"robotNamespace", "bodyName", "frameId", "topicName", "velocityTopicName",
                     "updateRate", "updateStartTime", "referenceLatitude", "referenceLongitude",
                     "referenceHeading", "referenceAltitude", "status", "service",

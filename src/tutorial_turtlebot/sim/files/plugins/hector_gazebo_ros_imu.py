@@ -17,7 +17,9 @@ from .model_plugin_values import body_link, vector
 from .sensor_reader import NOISE
 
 HECTOR_IMU = "libhector_gazebo_ros_imu.so"
-FILES = (HECTOR_IMU,)
+MODEL_FILES = (HECTOR_IMU,)
+HOSTS = ("robot", "world")
+DRIVE = False
 ERROR_FIELDS = ("Offset", "Drift", "DriftFrequency", "GaussianNoise")
 DRIFT_FREQUENCY = 1.0 / 3600.0      # Hz: hector's SensorModel default
 GRAVITY_SCALE = 9.8065              # m/s^2 per rad of <rpyOffset> roll or pitch (hector's)

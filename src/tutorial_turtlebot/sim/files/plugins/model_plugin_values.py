@@ -1,9 +1,10 @@
-"""What the model plugins' readers (the modules of ``model_table``) share: vectors of three
-numbers, the link a plugin reads, and the words of a plugin Gazebo would not run. No ROS, no
+"""What the model plugins' readers (their modules of ``table``) share: vectors of three
+numbers, the link a plugin reads, an SDF model's joints a drive names, and the words of a
+plugin Gazebo would not run. No ROS, no
 pybullet.
 """
 import math
-from typing import Collection, Optional, Tuple
+from typing import Collection, Mapping, Optional, Tuple
 
 from .. import limits
 
@@ -48,3 +49,18 @@ def body_link(reader, plugin, links: Collection[str], default: Optional[str],
                     % (reader.describe(plugin), name, NOT_RUN), plugin)
         return None
     return name
+
+
+def joints_found(reader, plugin, model: str, joints: Collection[str],
+                 tags: Mapping[str, str]) -> bool:
+    """Whether every joint the plugin's <tag>s name (``tags``: tag -> Gazebo's default) is one
+    of SDF model ``model``'s ``joints``; one warning for the first that is not (the drive
+    then does not run: Gazebo's stops loading)."""
+    for tag, default in tags.items():
+        joint = reader.text(plugin, tag, default)
+        if joint not in joints:
+            reader.warn("%s: <%s> %r is not a joint of model %r (its joints: %s): %s, as in "
+                        "Gazebo" % (reader.describe(plugin), tag, joint, model,
+                                    ", ".join(joints) or "none", NOT_RUN), plugin)
+            return False
+    return True

@@ -84,7 +84,7 @@ class DiffDrivePlugin:
         return self.wheel_diameter / 2.0
 
 
-# A robot's drive: the diff drive or one of drives.MODULES' plugins.
+# A robot's drive: the diff drive or another drive of table (a module with DRIVE).
 Drive = Union[DiffDrivePlugin, SkidSteerPlugin, PlanarMovePlugin, TricyclePlugin,
               ForceBasedMovePlugin]
 
@@ -130,7 +130,9 @@ class CameraSensor:
     """A ``<sensor type="camera">`` with ``libgazebo_ros_camera.so`` or a
     ``<sensor type="depth">`` with ``libgazebo_ros_openni_kinect.so``. Topics are relative to
     ``camera_name`` (itself relative to the robot's namespace); ``spec.depth`` is True for the
-    depth sensor; ``spec.rate`` is the plugin's updateRate (else the sensor's update_rate)."""
+    depth sensor; ``spec.rate`` is the plugin's updateRate (else the sensor's update_rate);
+    ``image_format`` Gazebo's <format> (R8G8B8, L8, ...), ``lens`` the image's <distortion>
+    (None: none), ``info_distortion`` CameraInfo's D (k1, k2, t1, t2, k3)."""
 
     name: str
     link: str
@@ -147,6 +149,9 @@ class CameraSensor:
     robot_namespace: str = ""
     pose: XyzRpy = ZERO_XYZ_RPY                  # the sensor's <pose> in its link
     point_cloud_cutoff_max: float = 5.0          # m
+    image_format: str = "R8G8B8"
+    lens: Optional[object] = None                # a camera_types.LensDistortion
+    info_distortion: Tuple[float, ...] = (0.0,) * 5
 
 
 @dataclass(frozen=True)
@@ -161,9 +166,12 @@ class RobotPlugins:
     imu: Optional[ImuPlugin] = None
     camera: Optional[CameraSensor] = None
     warnings: Tuple[str, ...] = ()
-    model_plugins: Tuple = ()     # p3d, joint_state_publisher, hector's (plugins.model_table)
+    model_plugins: Tuple = ()     # p3d, joint_state_publisher, hector's (plugins.table)
     lasers: Tuple[LaserSensor, ...] = ()
     cameras: Tuple[CameraSensor, ...] = ()
+    # the sensors SimRobot does not make itself, run as a world model's are (world_sensors):
+    # range, block laser, bumper, depth, multi- and triggered cameras, imu sensor; file order
+    sensors: Tuple = ()
 
     def __post_init__(self):
         """The first of each list and the list agree, whichever of them was given."""

@@ -6,20 +6,23 @@ gazebo_ros plugin's settings with Gazebo's defaults for what the block leaves ou
 make. Topic names are as written (relative ones resolve in the robot's namespace); frames are
 link names, unprefixed. Units: m, s, rad, Hz, N*m, m/s^2.
 
-``read_plugins`` reads them (urdf_file calls it for every URDF): libgazebo_ros_diff_drive (or
-another drive of ``drives``: skid steer, planar move, tricycle, force-based move; one drive
-a robot) and libgazebo_ros_imu
-in a ``<gazebo>`` block, and there the model plugins of ``model_table`` too (p3d,
-joint_state_publisher, hector's imu and gps: ``RobotPlugins.model_plugins``);
+``read_plugins`` reads them (urdf_file calls it for every URDF), each by its module of
+``table``: in a ``<gazebo>`` block the model plugins that run on robots, a drive
+(libgazebo_ros_diff_drive, skid steer, planar move, tricycle, force-based move: one drive a
+robot), libgazebo_ros_imu (one a robot) and the others (p3d, joint_state_publisher, hector's
+imu and gps: ``RobotPlugins.model_plugins``);
 in a ``<gazebo reference="LINK">`` block the sensors
-whose plugin runs on robots (the plugin modules of ``table``: a ray or gpu_ray sensor with
-libgazebo_ros_laser or gpu_laser, a camera sensor with libgazebo_ros_camera, a depth sensor
-with libgazebo_ros_openni_kinect), read as world models' sensors are (``table.read_sensor``).
-Everything else is accepted as it is (surface and material settings, an imu sensor without
-plugin, a sensor without ROS plugin, which publishes nothing on ROS in Gazebo either) or named
-in one warning (an unknown plugin or sensor, a second drive or IMU plugin, a plugin on the
-wrong kind of sensor, a parameter the plugin does not have). Every laser and camera runs, each
-on its own topics (``RobotPlugins.lasers``, ``cameras``). Wrong values raise a one-line
+whose plugin runs on robots (every sensor plugin of ``table``), read as world models' sensors
+are (``table.read_sensor``): a ray or gpu_ray sensor with libgazebo_ros_laser or gpu_laser and
+a camera sensor with libgazebo_ros_camera or a depth sensor with libgazebo_ros_openni_kinect
+(``RobotPlugins.lasers``, ``cameras``: SimRobot makes them), and the others
+(``RobotPlugins.sensors``: range, block laser, bumper, depth, multi- and triggered camera, imu
+sensor, run as a world model's by world_sensors). Everything else is accepted as it is (surface
+and material settings, an imu, ray, camera or depth sensor without plugin, which publishes
+nothing on ROS in Gazebo either) or named in one warning (an unknown plugin or sensor, a
+sensor of another type without plugin, a second drive or IMU plugin, a plugin on the wrong
+kind of sensor, a parameter the plugin does not have). Every sensor runs, each on its own
+topics. Wrong values raise a one-line
 UrdfError: every number is held to its limit in ``limits`` (rates, ranges, samples, image
 sizes, noise, wheels, torque, poses), every name and topic to ``limits.MAX_NAME`` characters,
 topics to ROS's characters.
@@ -29,27 +32,22 @@ from typing import Collection, List, Mapping, Optional
 from ....errors import UrdfError
 from .. import limits
 from .robot_plugin_types import (
-    DIFF_DRIVE, IMU, CameraSensor, DiffDrivePlugin, Drive, ImuPlugin, LaserSensor, RobotPlugins)
-from .sensor_reader import NOISE, SensorReader, plugin_file, strip_slash
-from .drives import MODULES as DRIVES
-from .gazebo_ros_diff_drive import PARAMS as DIFF_DRIVE_PARAMS, read_diff_drive
-from .model_table import is_model_plugin, read_model_plugin
-from .table import read_sensor, runs_on
+    CAMERA, DIFF_DRIVE, GPU_LASER, IMU, LASER, OPENNI_KINECT, CameraSensor, Drive, ImuPlugin,
+    LaserSensor, RobotPlugins)
+from .sensor_reader import SensorReader, plugin_file, strip_slash
+from .table import (model_plugin, plugins_of, read_model_plugin, read_sensor, runs_on,
+                    sensor_type)
 
-__all__ = ["read_plugins", "read_diff_drive", "plugin_file"]
+__all__ = ["read_plugins", "plugin_file"]
 
 # --- reading the <gazebo> blocks --------------------------------------------------------------
 
 WHEEL_JOINT_TYPES = ("continuous", "revolute")
-# What each model plugin reads (or Gazebo reads and the sim has no use for); anything else in
-# the block is ignored by Gazebo, and here it gets a warning (a misspelt parameter, most often).
-# A sensor plugin's are its module's PARAMS (table).
-MODEL_PLUGIN_PARAMS = {
-    DIFF_DRIVE: DIFF_DRIVE_PARAMS,     # gazebo_ros_diff_drive's: a robot's and a model's
-    IMU: {"robotNamespace", "bodyName", "frameName", "topicName", "serviceName", "updateRate",
-          "gaussianNoise", "xyzOffset", "rpyOffset", "alwaysOn", "imu"},
-}
 NOT_SIMULATED = "the robot runs without it"
+# a robot's sensor without a plugin is one warning, but of the types SimRobot makes (a laser's,
+# a camera's) and an imu (the TurtleBot3's, which talks only on Gazebo's transport)
+QUIET_TYPES = frozenset({sensor_type(f) for f in (LASER, GPU_LASER, CAMERA, OPENNI_KINECT)}
+                        | {"imu"})
 
 
 def read_plugins(robot, links: Collection[str], joint_types: Mapping[str, str],
@@ -76,7 +74,8 @@ class _PluginReader(SensorReader):
         self.imu: Optional[ImuPlugin] = None
         self.lasers: List[LaserSensor] = []      # every laser, in file order
         self.cameras: List[CameraSensor] = []    # every camera, in file order
-        self.model_plugins: List[object] = []      # model_table's plugins, in file order
+        self.sensors: List[object] = []          # the others (world_sensors'), in file order
+        self.model_plugins: List[object] = []      # the other model plugins, in file order
         self.robot_name = ""
 
     def read(self, robot) -> RobotPlugins:
@@ -90,7 +89,8 @@ class _PluginReader(SensorReader):
                 self._model_block(block)
         return RobotPlugins(self.drive, imu=self.imu, warnings=tuple(self.warnings),
                             model_plugins=tuple(self.model_plugins),
-                            lasers=tuple(self.lasers), cameras=tuple(self.cameras))
+                            lasers=tuple(self.lasers), cameras=tuple(self.cameras),
+                            sensors=tuple(self.sensors))
 
     # --- blocks ---------------------------------------------------------------------------
 
@@ -133,17 +133,21 @@ class _PluginReader(SensorReader):
                                                          NOT_SIMULATED))
 
     def _model_plugin(self, elem) -> None:
-        name, filename = self.plugin_id(elem)
-        if filename == DIFF_DRIVE:
-            self._keep_first("drive", self._diff_drive(elem, name), elem, "differential drive")
-        elif filename in DRIVES:
-            self._keep_first("drive", DRIVES[filename].read(self, elem, name), elem, "drive")
-        elif filename == IMU:
-            self._keep_first("imu", self._imu(elem, name), elem, "IMU plugin")
-        elif is_model_plugin(filename):     # p3d, joint states, hector's (model_table)
+        """A <plugin> of a <gazebo> block: a model plugin of ``table`` that runs on robots is
+        read by its module (a drive, the IMU: the robot's first of each; the others all)."""
+        _, filename = self.plugin_id(elem)
+        module = model_plugin(filename, self.host)
+        if module is not None:
             found = read_model_plugin(self, elem, self.robot_name, self.links,
                                       self.joint_types)
-            if found is not None:
+            if found is None:
+                return
+            if module.DRIVE:
+                self._keep_first("drive", found, elem, "differential drive"
+                                 if filename == DIFF_DRIVE else "drive")
+            elif filename == IMU:
+                self._keep_first("imu", found, elem, "IMU plugin")
+            else:
                 self.model_plugins.append(found)
         elif runs_on(filename, self.host):
             self.warn("%s is a sensor plugin outside any <sensor>: Gazebo loads it only inside "
@@ -153,31 +157,22 @@ class _PluginReader(SensorReader):
             self.warn("%s is not simulated here; %s" % (self.describe(elem), NOT_SIMULATED))
 
     def _sensor(self, elem, link) -> None:
-        """The laser or camera of a sensor on ``link`` (table.read_sensor: one plugin of a
-        kind a sensor), added to the robot's: every one runs, as in Gazebo."""
+        """The plugins of a sensor on ``link`` (table.read_sensor: one plugin of a kind a
+        sensor), each added to the robot's lasers, cameras (gazebo_ros_camera's and
+        openni_kinect's robot cameras) or other sensors: every one runs, as in Gazebo."""
+        kind = elem.get("type", "")
+        alone = elem.find("plugin") is None and kind not in QUIET_TYPES
+        if alone and plugins_of(kind, self.host):
+            self.warn("%s on link %r is not simulated here; %s (without a gazebo_ros plugin "
+                      "it publishes nothing on ROS)" % (self.sensor_id(elem), link,
+                                                        NOT_SIMULATED))
         for sensor in read_sensor(self, elem, link):
-            (self.lasers if isinstance(sensor, LaserSensor) else self.cameras).append(sensor)
-
-    # --- the model plugins -------------------------------------------------------------------
-
-    def _diff_drive(self, elem, name) -> DiffDrivePlugin:
-        self.check_params(elem, DIFF_DRIVE, MODEL_PLUGIN_PARAMS[DIFF_DRIVE])
-        return read_diff_drive(self, elem, name, self._wheel_joint)
-
-    def _imu(self, elem, name) -> ImuPlugin:
-        self.check_params(elem, IMU, MODEL_PLUGIN_PARAMS[IMU])
-        if elem.find("bodyName") is None:
-            self.fail(elem, "missing <bodyName> (the link the IMU reads)")
-        body = self._link(elem, "bodyName", "", elem)
-        # topicName and serviceName default to /default_imu in gazebo_ros_imu.
-        return ImuPlugin(
-            name=name, body_name=body,
-            frame_name=self._link(elem, "frameName", "", elem),
-            topic=self.topic(elem, "topicName", "/default_imu"),
-            service_name=self.topic(elem, "serviceName", "/default_imu"),
-            update_rate=self.rate(elem, "updateRate", 0.0, elem),
-            gaussian_noise=self.bounded(elem, "gaussianNoise", 0.0, elem, NOISE),
-            robot_namespace=self.topic(elem, "robotNamespace", ""))
+            if isinstance(sensor, LaserSensor):
+                self.lasers.append(sensor)
+            elif type(sensor) is CameraSensor:     # not a WorldCamera
+                self.cameras.append(sensor)
+            else:
+                self.sensors.append(sensor)
 
     # --- values ------------------------------------------------------------------------------
 
@@ -210,7 +205,8 @@ class _PluginReader(SensorReader):
                       "continuous or revolute" % (name, self.joint_types[name]), plugin)
         return name
 
-    wheel_joint = _wheel_joint   # the drive modules' (drives.MODULES) check of a wheel joint
+    wheel_joint = _wheel_joint   # the drive modules' check of a wheel joint
+    link = _link                 # gazebo_ros_imu's check of a link
 
     def _keep_first(self, slot: str, plugin, elem, what: str) -> None:
         """Keep ``plugin`` as the robot's ``slot`` (drive, imu) unless one is there already:

@@ -1,5 +1,6 @@
-"""The data of the sensor plugins that run on a world model's link (and not yet on a robot's):
-gazebo_ros_range and gazebo_ros_block_laser, with the rays of their ``<sensor type="ray">``.
+"""The data of the ray sensor plugins that the world's sensors run (world_sensors), on a world
+model's link or a robot's: gazebo_ros_range and gazebo_ros_block_laser, with the rays of their
+``<sensor type="ray">``.
 Plain data: no ROS, no pybullet, no file reading (the plugin modules beside it read them).
 Topic names are as written (relative ones resolve in ``robot_namespace``); frames as written,
 without a leading "/" (tf's resolve drops it). Units: m, rad, Hz.

@@ -1,16 +1,17 @@
-"""The model plugins (model_table) of a world file's model, or of a spawned SDF model, read
-with the world loader's file and warnings: a wrong value is a WorldError of one line, a plugin
-Gazebo would not run (no <bodyName>, an unknown link or joint) one warning line naming its
-file and line. Which ``<plugin>`` elements get here is the loader's (sdf_elements: the
-"plugin" row of "model"; any other plugin is one warning per world). No ROS, no pybullet.
+"""The model plugins (those of ``table`` that run on world models) of a world file's model, or
+of a spawned SDF model, read with the world loader's file and warnings: a wrong value is a
+WorldError of one line, a plugin Gazebo would not run (no <bodyName>, an unknown link or
+joint) one warning line naming its file and line. Which ``<plugin>`` elements get here is the
+loader's (sdf_elements: the "plugin" row of "model"; any other plugin is one warning per
+world). No ROS, no pybullet.
 """
 from typing import List, Sequence, Tuple
 
 from ....errors import WorldError
 from .. import limits, xml_reader
 from ..sdf.sdf_elements import one_line
-from .model_table import read_model_plugin
 from .sensor_reader import SensorReader
+from .table import read_model_plugin
 
 WITHOUT = "the world runs without it"
 
@@ -26,6 +27,11 @@ class _ModelPluginReader(SensorReader):
         line = one_line(self.source, elem.line if elem is not None else 0, message)
         if line not in self.warnings:
             self.warnings.append(line)
+
+    def wheel_joint(self, plugin, tag: str, default: str) -> str:
+        """The joint a drive's <tag> names (one of the model's: the drive module checked it
+        with model_plugin_values.joints_found)."""
+        return self.text(plugin, tag, default)
 
 
 def read_model_plugins(path: str, warnings: List[str], nodes: Sequence, model: str,

@@ -6,7 +6,7 @@ link, the plugin's settings with its defaults. No ROS, no pybullet.
 What runs on a world model: a ray or gpu_ray sensor with gazebo_ros_laser (gpu_laser),
 gazebo_ros_range or gazebo_ros_block_laser, a camera sensor with gazebo_ros_camera, a contact
 sensor with gazebo_ros_bumper, an imu sensor with gazebo_ros_imu_sensor (each plugin on a sensor
-is its own output, as Gazebo loads every one; table.MODULES lists them all). A sensor of those
+is its own output, as Gazebo loads every one; table.PLUGINS has them all). A sensor of those
 types without a gazebo_ros plugin publishes nothing on ROS in Gazebo either: nothing, no
 warning. Every other sensor (altimeter, sonar, ...) and every other plugin on a sensor is one
 warning line per kind and world, naming the first one's file and line and counting the others

@@ -15,8 +15,8 @@ import os
 from dataclasses import dataclass
 from typing import Callable, Dict, List, Optional, Tuple
 
-from ..plugins.model_table import is_model_plugin
 from ..plugins.sensor_reader import plugin_file
+from ..plugins.table import is_model_plugin
 from ..xml_reader import Element, boolean, numbers
 
 SIMULATED, APPROXIMATED, SKIPPED = "simulated", "approximated", "skipped"
@@ -73,8 +73,8 @@ NO_PLUGINS = "plugins do not run here (the sim offers gazebo_ros' world API itse
 
 
 def _runs_here(node: Element, static: bool) -> bool:
-    """A model <plugin> that runs here (plugins.model_table)."""
-    return is_model_plugin(plugin_file(node.get("filename", "") or "-"))
+    """A model <plugin> that runs on world models here (plugins.table)."""
+    return is_model_plugin(plugin_file(node.get("filename", "") or "-"), "world")
 
 
 # parent element -> child element -> Rule. The order is doc/worlds.md's.
@@ -182,11 +182,12 @@ TABLE: Dict[str, Dict[str, Rule]] = {
         "image": _rule(K, "the image shape is left out of its link"),
     },
     "mesh": {
-        "uri": _rule(S, "found as Gazebo finds it"),
+        "uri": _rule(S, "found as Gazebo finds it; a Fuel URL in the Fuel cache, else in a "
+                        "model folder of its name (never downloaded; else left out)"),
         "scale": _rule(S, "applied; a factor 0 leaves the mesh out (no extent to draw or "
                        "hit)"),
-        "submesh": _rule(K, "one named part of a mesh file cannot be taken here: the "
-                            "geometry is left out of its link"),
+        "submesh": _rule(S, "the named submesh alone (a Collada node's, an OBJ object's or "
+                            "group's), drawn and colliding; <center> true centres it"),
     },
     "actor": {
         "pose": _rule(S, "where it stands until its script moves it"),

@@ -1,5 +1,6 @@
 """Geometry helpers of SDF shapes, for the world loader (world_sdf): a box's size (a side of 0
-as Gazebo's ODE takes it), a plane's normal as a pose, a polyline's polygon cleaned and checked.
+as Gazebo's ODE takes it), a plane's size (beyond limits.MAX_SIZE clamped: Gazebo's plane is
+infinite) and its normal as a pose, a polyline's polygon cleaned and checked.
 No ROS, no pybullet.
 
 Units: metres, radians; poses are kinematics.XyzRpy in the frame of the shape's parent.
@@ -14,6 +15,7 @@ from ...kinematics import ZERO_XYZ_RPY, XyzRpy, cross_2d, rpy_from_matrix
 
 Point = Tuple[float, float]
 ZERO_SIDE = "a <box> side of 0 is built %g mm thick" % (limits.MIN_BOX_SIDE * 1000)
+PLANE_CLAMPED = "the most drawn; Gazebo's plane is infinite, its size only drawn"
 
 
 def box_size(reader, box: Element) -> Tuple[float, float, float]:
@@ -35,6 +37,28 @@ def box_size(reader, box: Element) -> Tuple[float, float, float]:
     if problem:
         reader.fail_bare(node, problem)
     return size
+
+
+def plane_size(reader, plane: Element) -> Tuple[float, float]:
+    """The drawn sides (m) of ``plane``'s <size> (SDF's default 1 1). Gazebo's plane collides
+    as an infinite plane and libsdformat bounds no size: the size only says what is drawn. A
+    side beyond limits.MAX_SIZE is clamped to it, with one warning; a side that is not a
+    positive finite number stays refused (limits.size_problem). The warning is said once
+    per file."""
+    node = plane.child("size")
+    if node is None:
+        return (1.0, 1.0)
+    size = reader.floats(node, 2, finite=False)
+    clamped = tuple(min(v, limits.MAX_SIZE) if math.isfinite(v) else v for v in size)
+    problem = limits.size_problem("<size>", clamped)
+    if problem:
+        reader.fail_bare(node, problem)
+    name = os.path.basename(reader.path)
+    if clamped != tuple(size) and not any(name in w and PLANE_CLAMPED in w
+                                          for w in reader.warnings):
+        reader.warn_short(node, "plane <size> %s drawn %g x %g m (%s; said once per file)"
+                          % (node.value, clamped[0], clamped[1], PLANE_CLAMPED))
+    return clamped
 
 
 def normal_pose(n: Sequence[float]) -> XyzRpy:

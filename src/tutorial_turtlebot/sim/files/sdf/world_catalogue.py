@@ -43,10 +43,25 @@ WORLD_SUFFIXES = (".world", ".sdf", ".model")
 
 def world_from_command_line(world: str, environ=os.environ) -> str:
     """``world`` with a relative file path made absolute against the directory the user typed
-    the command in (roslaunch runs the sim in ~/.ros, but leaves the shell's $PWD as it was)."""
+    the command in (roslaunch runs the sim in ~/.ros, but leaves the shell's $PWD as it was).
+    Where no such file is there, the world is looked for as gzserver looks for its world
+    (``gazebo_world``); found nowhere, the path from $PWD (named by the error)."""
     if world.endswith(WORLD_SUFFIXES) and not os.path.isabs(os.path.expanduser(world)):
-        return os.path.join(environ.get("PWD") or os.getcwd(), world)
+        typed = os.path.join(environ.get("PWD") or os.getcwd(), world)
+        return typed if os.path.isfile(typed) else gazebo_world(world, environ) or typed
     return world
+
+
+def gazebo_world(relative: str, environ=os.environ) -> Optional[str]:
+    """The file gzserver would load for the ``relative`` world path: in a folder of
+    GAZEBO_RESOURCE_PATH, else Gazebo's own ``worlds/NAME.world`` as this package's
+    worlds/NAME.world (``worlds/empty.world``, as gazebo_ros's empty_world.launch names it);
+    None where there is none."""
+    places = [os.path.join(f, relative)
+              for f in environ.get("GAZEBO_RESOURCE_PATH", "").split(":") if f]
+    if relative.startswith("worlds/"):
+        places.append(os.path.join(WORLD_DIR, relative[len("worlds/"):]))
+    return next((p for p in places if os.path.isfile(p)), None)
 
 
 def resolve_world(name_or_path: str) -> Tuple[str, Optional[Spawn]]:

@@ -6,6 +6,7 @@ What is read follows Gazebo 11 (sdformat 9) element by element, as sdf_elements'
 (doc/worlds.md shows it): models, nested models, links, their collisions and visuals (box,
 cylinder, sphere, plane, one extruded polyline, a Collada, STL or OBJ mesh: mesh_file), poses
 relative to the parent or to a named frame (sdf_frames), colours and textures (sdf_looks),
+meshes and their submeshes (sdf_meshes),
 ``<include>``s of model folders found as Gazebo finds them (asset_uri) nested to
 MAX_INCLUDE_DEPTH, actors (world_actors), the first ``<state>``'s model poses (sdf_saved_state)
 and the world's lights (world_lights). A movable link keeps its ``<inertial>`` (SDF's defaults
@@ -33,7 +34,7 @@ import os
 from dataclasses import replace
 from typing import Dict, List, Optional, Tuple
 
-from ....errors import UserError, WorldError
+from ....errors import WorldError
 from .. import limits
 from .. import xml_reader
 from ..asset_uri import AssetError, AssetNotFound, model_sdf_file, resolve_uri
@@ -43,10 +44,11 @@ from ..plugins.world_model_plugins import ModelPluginReading, with_plugins
 from ..plugins.world_sensor_reading import WorldSensorReading
 from .sdf_elements import ElementNotes, one_line
 from .sdf_frames import MODEL_FRAME, WORLD_FRAME, Frames
-from .sdf_geometry import box_size, clean_polygon, normal_pose
+from .sdf_geometry import box_size, clean_polygon, normal_pose, plane_size
 from .sdf_inertia import InertiaReader
+from .sdf_meshes import MeshReader
 from .sdf_joints import JointNode, simulated_joints
-from ..looks.sdf_looks import LookReader
+from ..looks.sdf_looks import LookReader, sets_nothing
 from .sdf_saved_state import saved_poses, with_saved_pose
 from .sdf_versions import upgraded, with_version_warnings
 from .world_actors import MAX_WAYPOINTS, read_actor
@@ -74,7 +76,7 @@ def parse_xml(data, source: str) -> Element:
 
 # --- the loader ---------------------------------------------------------------------------------
 
-class _Loader(InertiaReader, LookReader, XmlReader):
+class _Loader(InertiaReader, LookReader, MeshReader, XmlReader):
     """Walks one SDF document; every error names the file and the line of the element at fault."""
 
     def __init__(self, path: str, base_dir: Optional[str] = None, depth: int = 0,
@@ -105,13 +107,14 @@ class _Loader(InertiaReader, LookReader, XmlReader):
         self.actors: List[Tuple[Actor, Model]] = []   # the world's, in file order
         self.sensors = WorldSensorReading()         # the links' <sensor>s (world_sensor_reading)
         self.model_plugins = ModelPluginReading()   # the models' <plugin>s (world_model_plugins)
+        self.fuel_missing: List[tuple] = []         # Fuel files not cached (sdf_meshes)
 
     def inner(self, path: str) -> "_Loader":
         """A loader of the included file ``path`` that adds to what this one has read."""
         inner = _Loader(path, depth=self.depth + 1, read_meshes=self.read_meshes,
                         parsed=self.parsed)
         for shared in ("shapes", "warnings", "budget", "material_scripts", "elements", "lights",
-                       "actors", "sensors", "model_plugins"):
+                       "actors", "sensors", "model_plugins", "fuel_missing"):
             setattr(inner, shared, getattr(self, shared))
         return inner
 
@@ -190,7 +193,7 @@ class _Loader(InertiaReader, LookReader, XmlReader):
         ``parent``: the models in file order, then the actors (Gazebo's World::LoadEntities)."""
         models: List[Model] = []
         gravity = World.gravity
-        saved = saved_poses(world)
+        saved = saved_poses(world, self.warn)
         nodes = [with_saved_pose(n, saved) if n.tag in ("model", "include", "actor") else n
                  for n in world.children]
         frames = self.frames(parent, WORLD_FRAME, [n for n in nodes if n.tag in (
@@ -218,6 +221,7 @@ class _Loader(InertiaReader, LookReader, XmlReader):
                 self.elements.check("world", node, self.path)
         models.extend(model for _, model in self.actors)
         self.elements.finish()
+        self.fuel_warnings()
         return World(name, self.path, tuple(m.name for m in models), tuple(self.shapes),
                      tuple(models), tuple(self.warnings), tuple(self.lights),
                      tuple(actor for actor, _ in self.actors), sensors=self.sensors.of(models),
@@ -406,7 +410,7 @@ class _Loader(InertiaReader, LookReader, XmlReader):
 
     def element(self, node: Element, pose: XyzRpy, scope: str, static: bool) -> Optional[Shape]:
         """A collision or visual standing at world ``pose`` as a Shape; None for an empty
-        geometry or one left out (sdf_elements: a heightmap, a submesh ...)."""
+        geometry or one left out (sdf_elements: a heightmap, an image ...)."""
         name = scope + self.name(node)
         for child in node.children:
             if child.tag not in ("geometry", "pose", "material"):
@@ -429,7 +433,7 @@ class _Loader(InertiaReader, LookReader, XmlReader):
         elif geo.tag == "sphere":
             size = self.positive(geo, "radius", 1, (1.0,))
         elif geo.tag == "plane":
-            size = self.positive(geo, "size", 2, (1.0, 1.0))
+            size = plane_size(self, geo)
             normal_node = geo.child("normal")
             normal = self.floats(normal_node, 3) if normal_node is not None else (0.0, 0.0, 1.0)
             length = math.hypot(*normal)     # no overflow for 1e200
@@ -450,75 +454,12 @@ class _Loader(InertiaReader, LookReader, XmlReader):
         collision = node.tag == "collision"
         rgba, texture = (DEFAULT_RGBA, None) if collision else self.look(node.child("material"))
         mu = self.friction(node) if collision else 1.0
-        mesh_colours = geo.tag == "mesh" and not collision and node.child("material") is None
+        mesh_colours = geo.tag == "mesh" and not collision and sets_nothing(node.child("material"))
         if geo.tag == "mesh" and not collision and self.read_meshes:
             self.texture_warnings(geo, mesh, size, own=mesh_colours)
         return Shape(name, geo.tag, pose, tuple(size), points, rgba, static, collision, mu=mu,
                      mesh=mesh if geo.tag == "mesh" else "", mesh_colours=mesh_colours,
                      texture=texture)
-
-    def mesh(self, geo: Element, name: str,
-             static: bool) -> Optional[Tuple[Tuple[float, ...], str]]:
-        """(scale, absolute file) of a <mesh>, its file read once here (unless ``read_meshes``
-        is False) so that a bad one is refused with this line. None, with a warning, for a
-        file found nowhere, a Collada file that cannot be read, a <submesh> or a scale with a
-        factor 0: Gazebo loads the link without that geometry (this sim too, for a submesh),
-        or with one that has no extent."""
-        from ..meshes.mesh_file import SUFFIXES, MeshUnreadable, load_mesh
-        uri_node = geo.child("uri")
-        if uri_node is None or not uri_node.value:
-            self.fail_bare(geo, "<mesh> of %s needs a <uri>" % name)
-        submesh = geo.child("submesh")
-        if submesh is not None and self.elements.check("mesh", submesh, self.path, static):
-            return None
-        scale = (1.0, 1.0, 1.0)
-        scale_node = geo.child("scale")
-        if scale_node is not None:
-            scale = self.floats(scale_node, 3, finite=False)
-            problem = limits.scale_problem(scale, "<scale>")
-            if problem and 0 in scale and not limits.scale_problem(
-                    [v or 1.0 for v in scale], "<scale>"):
-                self.warn_short(scale_node, "%s left out: its <scale> %s has a factor 0, so it "
-                                            "has no extent (Gazebo draws and hits nothing "
-                                            "there either)" % (name, scale_node.value))
-                return None
-            if problem:
-                self.fail_bare(scale_node, problem)
-        try:
-            path = resolve_uri(uri_node.value, self.base_dir)
-            if self.read_meshes:
-                load_mesh(path, scale)
-            else:               # what load_mesh refuses without reading the file
-                why = not_regular(path)
-                if why is not None:
-                    self.fail_bare(uri_node, "%s: %s (a mesh file is needed)" % (path, why))
-                suffix = os.path.splitext(path)[1].lower()
-                if suffix not in SUFFIXES:
-                    self.fail_bare(uri_node, "%s: unknown mesh format %r; the formats read "
-                                             "are %s" % (path, suffix, ", ".join(SUFFIXES)))
-        except (AssetNotFound, MeshUnreadable) as err:
-            short = getattr(err, "short", str(err))    # the folders searched: said once
-            if not any(short in w for w in self.warnings):   # once per file
-                self.warn_short(uri_node, "%s left out: %s" % (name, short))
-                self.warn_searched(err)
-            return None
-        except UserError as err:
-            self.fail_bare(uri_node, str(err))
-        return scale, path
-
-    def texture_warnings(self, geo: Element, path: str, scale, own: bool = True) -> None:
-        """A warning (once per line, at most 200 characters) for each texture of the visual
-        mesh ``path`` that is not drawn: one the mesh reader could not use (its part is drawn
-        in its colour), or, without ``own`` (the visual has an SDF <material>, which colours
-        the whole mesh), every texture it found."""
-        from ..meshes.mesh_file import load_mesh
-        for part in load_mesh(path, scale).parts:
-            problem = part.texture_problem
-            if part.texture is not None and not own:
-                problem = ("%s: texture %s not drawn: the visual's <material> colours the mesh"
-                           % (os.path.basename(path), os.path.basename(part.texture)))
-            if problem and not any(problem[:120] in w for w in self.warnings):   # once
-                self.warn_short(geo.child("uri"), problem)
 
     def polygon(self, polyline: Element) -> Tuple[Tuple[float, float], ...]:
         points = [self.floats(p, 2) for p in polyline.all("point")]
@@ -533,15 +474,28 @@ class _Loader(InertiaReader, LookReader, XmlReader):
         return cleaned
 
 
-def _check_names(world: World) -> None:
+def _unique_names(world: World) -> World:
+    """``world`` with a second collision or visual of a name already taken in its link (not
+    its twin) renamed ``NAME~2`` (~3 ...), with one warning each: Gazebo loads such a file,
+    and the simulator keys each shape by its scoped name."""
     seen: Dict[str, Shape] = {}
+    shapes, warnings = [], list(world.warnings)
     for s in world.shapes:
         other = seen.get(s.name)
         if other is not None and other.twin != s.name:
+            count = 2
+            while "%s~%d" % (s.name, count) in seen:
+                count += 1
             kind = "collision" if s.collision else "visual"
-            raise WorldError("%s: two elements are named %s (the second a %s): names must be "
-                             "unique within a link" % (world.path, s.name, kind))
+            renamed = "%s~%d" % (s.name, count)
+            warnings.append("%s: two elements are named %s (the second a %s): the second is %s "
+                            "here" % (world.path, s.name, kind, renamed))
+            s = replace(s, name=renamed)
         seen[s.name] = s
+        shapes.append(s)
+    if len(warnings) == len(world.warnings):
+        return world
+    return replace(world, shapes=tuple(shapes), warnings=tuple(warnings))
 
 
 def _overridden(model: Element, include: Element, tags: Tuple[str, ...]) -> Element:
@@ -568,11 +522,9 @@ def load_world(path: str) -> World:
     from ..meshes.mesh_prefetch import convert_world
     root = _parse_xml(path)
     shared = {"parsed": {}, "material_scripts": MaterialScripts()}
-    _check_names(_Loader(path, read_meshes=False, **shared).document(root))
+    _Loader(path, read_meshes=False, **shared).document(root)   # refusals, before the meshes
     convert_world(lambda: _Loader(path, **shared).document(root), path)
-    world = _Loader(path, **shared).document(root)
-    _check_names(world)
-    return world
+    return _unique_names(_Loader(path, **shared).document(root))
 
 
 def load_model_xml(root, source: str, name: str, pose: XyzRpy = ZERO_XYZ_RPY,
@@ -594,5 +546,4 @@ def load_model_xml(root, source: str, name: str, pose: XyzRpy = ZERO_XYZ_RPY,
         loader.fail_bare(root, "<sdf> must hold exactly one <model>, it holds %d" % len(models))
     models[0].set("name", name)
     world = loader.models_of(xml_reader.element(root.tag, {}, root.line, models), name, pose)
-    _check_names(world)
-    return with_version_warnings(world, [root])
+    return with_version_warnings(_unique_names(world), [root])

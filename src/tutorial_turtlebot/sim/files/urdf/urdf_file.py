@@ -15,7 +15,7 @@ it (urdf_gazebo); a file that is no mesh, or a bad scale, is refused. The file's
 read later, by ``mesh_file.load_mesh``, when a body is built.
 What Gazebo's URDF conversion adds (urdf_gazebo): a reference-less ``<gazebo>`` block's
 ``<static>`` (``RobotDescription.static``), and a root link named ``world``, to which the model is
-joined (``held_links``, ``model_links``).
+joined (``model_links``; urdf_to_sdf converts a plain URDF into the SDF model Gazebo makes).
 """
 import os
 from dataclasses import dataclass, field
@@ -33,7 +33,7 @@ from ....robot_models import urdf_path
 from ..plugins.robot_plugin_types import RobotPlugins
 from ..plugins.robot_plugins import read_plugins
 from ..xml_reader import Element, XmlReader
-from .urdf_gazebo import WORLD_LINK, MissingMeshes, fixed_below, read_static
+from .urdf_gazebo import WORLD_LINK, MissingMeshes, read_static
 
 REEXPORTED = (urdf_path,)  # re-exported: the sim and the tests import urdf_path from here
 
@@ -81,13 +81,14 @@ class Collision:
 class Visual:
     """A visual shape placed at ``origin`` in its link frame.
 
-    ``rgba`` is in 0..1, None if uncoloured.
+    ``rgba`` is in 0..1, None if uncoloured; ``name``: its name attribute ("" if none).
     """
 
     origin: Origin
     geometry: Geometry
     material: str = ""
     rgba: Optional[Tuple[float, float, float, float]] = None
+    name: str = ""
 
 
 @dataclass(frozen=True)
@@ -126,7 +127,7 @@ class Joint:
     origin: Origin = Origin()
     axis: Vector3 = (1.0, 0.0, 0.0)
     friction: float = 0.0          # N m (N): the <dynamics> friction that holds it still
-    damping: float = 0.0           # N m s/rad (N s/m): <dynamics> damping (not simulated)
+    damping: float = 0.0           # N m s/rad (N s/m): <dynamics> damping (a robot: not simulated)
 
 
 @dataclass(frozen=True)
@@ -158,16 +159,6 @@ class RobotDescription:
         """Name of the one link that is no joint's child (base_footprint on a TurtleBot3)."""
         return next(name for name in self.links if name not in self._parent_joint)
 
-    def held_links(self) -> List[str]:
-        """The links Gazebo holds in place, root first: every link of a static model; the root
-        link ``world`` and the links fixed to it (fixed joints only) when the root is that
-        (Gazebo joins the model to the world there); else none."""
-        if self.static:
-            return [self.root_link] + [j.child for j in self.joints.values()]
-        if self.root_link == WORLD_LINK:
-            return fixed_below(WORLD_LINK, self.joints.values())
-        return []
-
     def _lumped(self, link: str) -> bool:
         """Whether Gazebo lumps ``link`` into its parent: its joint is fixed, and the parent is
         not a root ``world`` (that joint joins the model to the world)."""
@@ -180,12 +171,6 @@ class RobotDescription:
         every link not lumped into its parent by a fixed joint; a root ``world`` is none."""
         return [link for link in self.links if not self._lumped(link)
                 and not link == WORLD_LINK == self.root_link]
-
-    def model_joints(self) -> List[Joint]:
-        """The joints Gazebo's model has, in file order: those that move (not floating or
-        planar: parser_urdf makes no joint of them) and the fixed joints of a root ``world``."""
-        return [j for j in self.joints.values() if j.type not in ("floating", "planar")
-                and not (j.type == "fixed" and self._lumped(j.child))]
 
     @property
     def mass(self) -> float:
@@ -407,7 +392,7 @@ class _Reader(XmlReader):
         geometry = self._geometry(elem, owner)
         if geometry is None:
             return None
-        visual = Visual(self._origin(elem, owner), geometry)
+        visual = Visual(self._origin(elem, owner), geometry, name=elem.get("name") or "")
         material = elem.find("material")
         if material is None:
             return visual
@@ -417,7 +402,7 @@ class _Reader(XmlReader):
             if name not in materials:
                 self.fail(material, "has no <color> and no robot-level definition", owner)
             rgba = materials[name]
-        return Visual(visual.origin, visual.geometry, name, rgba)
+        return Visual(visual.origin, visual.geometry, name, rgba, visual.name)
 
     def _rgba(self, material, owner):
         color = material.find("color")

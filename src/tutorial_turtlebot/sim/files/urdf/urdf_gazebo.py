@@ -2,9 +2,9 @@
 and joints, for urdf_file's reader: the model's ``<static>`` flag, and the visuals and collisions
 whose mesh file cannot be found, left out with one warning line each (up to a few). No ROS, no
 pybullet. A root link named ``world`` (``WORLD_LINK``) is the world itself: the model is joined
-to it (RobotDescription.held_links says which links that holds).
+to it (urdf_to_sdf writes those joints).
 """
-from typing import Iterable, List, Tuple
+from typing import List, Tuple
 
 from ..sdf.sdf_elements import MAX_WARNING_CHARS, one_line
 from ..xml_reader import Element, element
@@ -91,27 +91,3 @@ def _without(node: Element, dropped: set) -> Element:
                    [_without(child, dropped) for child in node if id(child) not in dropped])
     copy.text, copy.tail = node.text, node.tail
     return copy
-
-
-def fixed_below(root: str, joints: Iterable) -> List[str]:
-    """``root`` and every link joined to it through fixed joints only (``joints``: urdf_file
-    Joints), root first."""
-    out: List[str] = [root]
-    children: dict = {}
-    for joint in joints:
-        if joint.type == "fixed":
-            children.setdefault(joint.parent, []).append(joint.child)
-    for link in out:                    # grows as it goes: breadth first
-        out.extend(children.get(link, ()))
-    return out
-
-
-def anchor_name(links: Iterable[str]) -> str:
-    """The name a root link ``world`` takes in the URDF pybullet loads (pybullet drops a link
-    named world, and the joint below it): "world_anchor", with underscores added until no
-    link of ``links`` has it."""
-    taken = set(links)
-    name = "world_anchor"
-    while name in taken:
-        name += "_"
-    return name

@@ -11,10 +11,8 @@ Wavefront files instead, in metres:
   texture where it has one (obj_writer.write_obj_parts; a texture that cannot be used leaves
   the part in its colour). ``textured_urdf`` tells whether a URDF text names such a file;
 - a mesh ``<collision>`` becomes one file of the mesh's convex hull: pybullet collides a moving
-  body's mesh as its convex hull (Gazebo's ODE collides with the triangles themselves); that of
-  a link Gazebo holds in place (``held``: RobotDescription.held_links) one file of its triangles,
-  marked ``concave="yes"``, which pybullet's URDF loader builds as a triangle mesh (a static
-  SDF mesh collides so too, world_bullet), on a body loaded with a fixed base.
+  body's mesh as its convex hull (Gazebo's ODE collides with the triangles themselves).
+This is a robot's URDF; a plain URDF spawned is converted to SDF (urdf_to_sdf) instead.
 
 The files are written once per process for each (mesh file, scale) into one folder of the
 system's temporary directory, which is removed when the process ends (the folder of a process
@@ -39,7 +37,6 @@ from ..meshes.mesh_file import load_mesh
 from ..meshes.mesh_types import Mesh, MeshPart
 from ..meshes.obj_writer import write_obj_parts
 from .urdf_file import mesh_scale
-from .urdf_gazebo import WORLD_LINK, anchor_name
 from ....errors import UserError
 
 Rgba = Tuple[float, float, float, float]
@@ -50,7 +47,6 @@ MAX_CONVERTED = 256   # (mesh file, scale) pairs whose files are kept, of each k
 _cache_dir: Optional[str] = None
 _visual_parts: "OrderedDict[tuple, List[Tuple[str, Optional[Rgba]]]]" = OrderedDict()
 _hulls: "OrderedDict[tuple, str]" = OrderedDict()
-_triangles: "OrderedDict[tuple, str]" = OrderedDict()
 _textured: set = set()    # the files of _visual_parts that are textured
 
 
@@ -76,7 +72,6 @@ def _folder() -> str:
         _cache_dir = tempfile.mkdtemp(prefix="%s%d_" % (CACHE_PREFIX, os.getpid()))
         _visual_parts.clear()
         _hulls.clear()
-        _triangles.clear()
         _textured.clear()
         atexit.register(shutil.rmtree, _cache_dir, True)
     return _cache_dir
@@ -152,21 +147,6 @@ def hull_file(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> str:
     return _hulls[key]
 
 
-def triangle_file(path: str, scale: Sequence[float] = (1.0, 1.0, 1.0)) -> str:
-    """A Wavefront file of every triangle of the mesh file ``path`` times ``scale``, in one
-    part: the collision of a link that never moves, built as a triangle mesh."""
-    mesh = load_mesh(path, scale)
-    key = _key(path, scale)
-    folder = _folder()
-    if key in _triangles:
-        _triangles.move_to_end(key)
-    else:
-        whole = Mesh(mesh.path, mesh.vertices, (MeshPart(mesh.faces, None),))
-        path = write_obj_parts(whole, folder, textures=False)[0][0]
-        _kept(_triangles, key, path, [path])
-    return _triangles[key]
-
-
 def _mesh_element(element: ElementTree.Element) -> Optional[ElementTree.Element]:
     geometry = element.find("geometry")
     return geometry.find("mesh") if geometry is not None else None
@@ -188,22 +168,20 @@ def _has_colour(material: Optional[ElementTree.Element], colours: Dict[str, bool
     return colours.get(material.get("name", ""), False)
 
 
-def bullet_meshes(robot: ElementTree.Element, base_dir: str, held: Sequence[str] = ()) -> None:
+def bullet_meshes(robot: ElementTree.Element, base_dir: str) -> None:
     """Rewrite, in place, every ``<mesh>`` visual and collision of the URDF ``<robot>`` into
-    the Wavefront files of this module (filenames relative to ``base_dir``): the collisions of
-    the links named in ``held`` as triangles, the others as hulls. UserError (one line) for a
-    mesh that cannot be found or read."""
+    the Wavefront files of this module (filenames relative to ``base_dir``), the collisions as
+    hulls. UserError (one line) for a mesh that cannot be found or read."""
     colours = {m.get("name", ""): m.find("color") is not None for m in robot.findall("material")}
     for link in robot.findall("link"):
         try:
-            _link_meshes(link, colours, base_dir, link.get("name") in held)
+            _link_meshes(link, colours, base_dir)
         except UserError as err:
             raise UserError("link %r <mesh>: %s" % (link.get("name", ""), err)) from None
 
 
-def _link_meshes(link: ElementTree.Element, colours: Dict[str, bool], base_dir: str,
-                 held: bool = False) -> None:
-    """bullet_meshes of one link (``held``: its collisions as triangles)."""
+def _link_meshes(link: ElementTree.Element, colours: Dict[str, bool], base_dir: str) -> None:
+    """bullet_meshes of one link."""
     for number, visual in enumerate(list(link.findall("visual"))):
         mesh = _mesh_element(visual)
         if mesh is None:
@@ -235,10 +213,8 @@ def _link_meshes(link: ElementTree.Element, colours: Dict[str, bool], base_dir: 
         if mesh is None:
             continue
         path = resolve_uri(mesh.get("filename", ""), base_dir)
-        mesh.set("filename", (triangle_file if held else hull_file)(path, _scale(mesh)))
+        mesh.set("filename", hull_file(path, _scale(mesh)))
         mesh.attrib.pop("scale", None)
-        if held:
-            collision.set("concave", "yes")
 
 
 def indent(element: ElementTree.Element, level: int = 0) -> None:
@@ -273,26 +249,16 @@ BARE_LINK_MASS = 1e-6
 BARE_LINK_INERTIA = 1e-12
 
 
-def bullet_urdf_text(robot: ElementTree.Element, base_dir: str, static: bool = False,
-                     held: Sequence[str] = ()) -> str:
+def bullet_urdf_text(robot: ElementTree.Element, base_dir: str) -> str:
     """The URDF text pybullet loads (engine/urdf_loader) of a copy of the parsed ``<robot>``:
-    its meshes rewritten by ``bullet_meshes`` (relative to ``base_dir``; the collisions of the
-    ``held`` links as triangles), each link without an ``<inertial>`` (a bare frame:
-    base_footprint, base_scan, ...) given next to no mass, joint damping left out (not
-    simulated: pybullet's adds energy), one element a line (``urdf_text``). Gazebo drops a bare
-    frame's link or merges it with no mass; pybullet would give it 1 kg, which merged into a
-    Burger's chassis would triple it. A model held in place (loaded with a fixed base):
-    ``static``, every joint fixed (nothing of a static model moves); a root link ``world`` in
-    ``held`` emptied and renamed ``anchor_name`` (pybullet drops a link named world, and the
-    joint below it with it)."""
+    its meshes rewritten by ``bullet_meshes`` (relative to ``base_dir``), each link without an
+    ``<inertial>`` (a bare frame: base_footprint, base_scan, ...) given next to no mass, joint
+    damping left out (not simulated: pybullet's adds energy), one element a line
+    (``urdf_text``). Gazebo drops a bare frame's link or merges it with no mass; pybullet would
+    give it 1 kg, which merged into a Burger's chassis would triple it."""
     robot = copy.deepcopy(robot)
-    if static:
-        for joint in robot.findall("joint"):
-            joint.set("type", "fixed")
-    if WORLD_LINK in held:
-        _rename_world(robot)
     if next(robot.iter("mesh"), None) is not None:
-        bullet_meshes(robot, base_dir, held)
+        bullet_meshes(robot, base_dir)
     for dynamics in robot.iter("dynamics"):   # pybullet's joint damping adds energy (a joint
         dynamics.set("damping", "0")          # of damping 0.02 spun up to its velocity limit)
     for link in robot.iter("link"):
@@ -305,28 +271,13 @@ def bullet_urdf_text(robot: ElementTree.Element, base_dir: str, static: bool = F
     return urdf_text(robot)
 
 
-def _rename_world(robot: ElementTree.Element) -> None:
-    """The root link ``world`` of ``robot``, in place: emptied (Gazebo reads nothing of it)
-    and renamed ``anchor_name``, in the joints too."""
-    links = robot.findall("link")
-    anchor = anchor_name(link.get("name", "") for link in links)
-    for link in links:
-        if link.get("name") == WORLD_LINK:
-            for child in list(link):
-                link.remove(child)
-            link.set("name", anchor)
-    for parent in robot.findall("joint/parent"):
-        if parent.get("link") == WORLD_LINK:
-            parent.set("link", anchor)
-
-
-def mesh_triangles(description, held: Sequence[str] = ()) -> Tuple[int, int]:
+def mesh_triangles(description) -> Tuple[int, int]:
     """(triangles of every mesh a ``urdf_file.RobotDescription`` uses, the most vertices of
-    one of its collision meshes that collide as hulls: of links not in ``held``), its files
-    read (and kept, as load_mesh keeps them)."""
+    one of its collision meshes, which collide as hulls), its files read (and kept, as
+    load_mesh keeps them)."""
     triangles = hull_vertices = 0
-    for name, link in description.links.items():
-        for shapes, collide in ((link.visuals, False), (link.collisions, name not in held)):
+    for link in description.links.values():
+        for shapes, collide in ((link.visuals, False), (link.collisions, True)):
             for shape in shapes:
                 geometry = shape.geometry
                 if geometry.shape != "mesh":
@@ -382,5 +333,4 @@ def cache_clear() -> None:
     _cache_dir = None
     _visual_parts.clear()
     _hulls.clear()
-    _triangles.clear()
     _textured.clear()

@@ -11,7 +11,7 @@ import pytest
 from tutorial_turtlebot.errors import WorldError
 from tutorial_turtlebot.sim.files.plugins.camera_types import (
     DEPTH_CAMERA, MULTICAMERA, TRIGGERED_CAMERA, LensDistortion, WorldCamera)
-from tutorial_turtlebot.sim.files.plugins.robot_plugin_types import CAMERA
+from tutorial_turtlebot.sim.files.plugins.robot_plugin_types import CAMERA, OPENNI_KINECT
 from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 
 from unit_helpers import world_file
@@ -73,6 +73,24 @@ def test_depth_camera_defaults_are_gazebo_ros_depth_cameras(tmp_path):
     [sixteen], _ = read(tmp_path, camera_model(DEPTH_CAMERA, "depth", params=(
         "<useDepth16UC1Format>true</useDepth16UC1Format><imageTopicName>rgb</imageTopicName>")))
     assert (sixteen.depth_16bit, sixteen.image_topic) == (True, "rgb")
+
+
+def test_an_openni_kinect_on_a_world_model_is_a_depth_camera_with_its_far_cutoff(tmp_path):
+    """gazebo_ros_openni_kinect advertises gazebo_ros_depth_camera's topics with the same
+    defaults; it adds pointCloudCutoffMax (5 m)."""
+    [kinect], warnings = read(tmp_path, camera_model(OPENNI_KINECT, "depth"))
+    assert warnings == []
+    assert isinstance(kinect, WorldCamera) and kinect.spec.depth
+    assert (kinect.plugin_file, kinect.image_topic, kinect.info_topic, kinect.depth_image_topic,
+            kinect.depth_info_topic, kinect.point_cloud_topic) == (
+        OPENNI_KINECT, "ir/image_raw", "ir/camera_info", "depth/image_raw",
+        "depth/camera_info", "points")
+    assert (kinect.point_cloud_cutoff, kinect.point_cloud_cutoff_max,
+            kinect.depth_16bit) == (0.4, 5.0, False)
+    [far], _ = read(tmp_path, camera_model(OPENNI_KINECT, "depth", params=(
+        "<pointCloudCutoffMax>2.5</pointCloudCutoffMax>"
+        "<useDepth16UC1Format>1</useDepth16UC1Format>")))
+    assert (far.point_cloud_cutoff_max, far.depth_16bit) == (2.5, True)
 
 
 def test_a_triggered_cameras_trigger_topic_is_its_own(tmp_path):

@@ -32,10 +32,10 @@ def sensor(plugin_file, kind, body="", params=""):
             % (kind, body, plugin_file, params))
 
 
-def test_the_bumper_is_contact_sensors_and_the_imu_sensor_imu_sensors_on_world_models():
-    assert table.plugins_of("contact", "world") == (BUMPER,)
-    assert table.plugins_of("imu", "world") == (IMU_SENSOR,)
-    assert table.plugins_of("imu", "robot") == () and not table.runs_on(BUMPER, "robot")
+def test_the_bumper_is_contact_sensors_and_the_imu_sensor_imu_sensors_on_both_hosts():
+    for host in ("world", "robot"):
+        assert table.plugins_of("contact", host) == (BUMPER,)
+        assert table.plugins_of("imu", host) == (IMU_SENSOR,)
 
 
 def test_a_bumper_takes_gazebo_ros_bumpers_defaults(tmp_path):

@@ -1,6 +1,6 @@
-"""The drive plugins besides the diff drive as a URDF's <gazebo> block declares them
-(drives.MODULES through urdf_file.read_urdf_text): Gazebo's defaults, the parameters read, the
-one-line refusals and the warnings. Units: m, s, rad, Hz, N*m."""
+"""The drive plugins besides the diff drive as a URDF's <gazebo> block declares them (their
+modules of the plugin table, through urdf_file.read_urdf_text): Gazebo's defaults, the
+parameters read, the one-line refusals and the warnings. Units: m, s, rad, Hz, N*m."""
 from pathlib import Path
 
 import pytest

@@ -248,8 +248,9 @@ def test_depth_camera_defaults(tmp_path):
     assert camera == CameraSensor(
         name="kinect", link="lidar", plugin_file=OPENNI_KINECT, camera_name="", frame="lidar",
         spec=CameraSpec(320, 240, 1.047, 0.0, near=0.1, far=100.0, depth=True, baseline=0.0),
-        image_topic="image_raw", info_topic="camera_info", depth_image_topic="depth/image_raw",
-        depth_info_topic="depth/camera_info", point_cloud_topic="points")
+        image_topic="ir/image_raw", info_topic="ir/camera_info",   # the kinect's own defaults
+        depth_image_topic="depth/image_raw", depth_info_topic="depth/camera_info",
+        point_cloud_topic="points")
 
 
 def test_plugin_file_is_completed_as_gazebo_does():

@@ -47,8 +47,6 @@ SKIPPED_KINDS = {
                                  '<uri>terrain.png</uri></heightmap></geometry>'),
     "<image> skipped": model("", name="maze", geometry='<geometry><image><uri>m.png</uri>'
                              '<height>1</height></image></geometry>'),
-    "<submesh> skipped": model("", name="part", geometry='<geometry><mesh><uri>x.dae</uri>'
-                               '<submesh><name>leg</name></submesh></mesh></geometry>'),
     "<plugin> of a model skipped": model('<plugin name="door" filename="libdoor.so"/>',
                                          name="door"),
     "<gripper> of a model skipped": model('<gripper name="g"/>', name="hand"),

@@ -3,6 +3,7 @@ with one warning line where something is left out; real garbage is still refused
 are written here, small; none is copied from anywhere."""
 import os
 
+import numpy as np
 import pytest
 
 from tutorial_turtlebot.sim.files.meshes.mesh_file import cache_clear
@@ -296,6 +297,35 @@ def test_the_saved_state_places_the_models_it_names(tmp_path):
     box = world.model_shapes("barrier")[0]
     assert box.pose[:2] == pytest.approx((1.0, -1.5))           # the shapes moved with it
     assert world.warnings == ()
+
+
+def test_two_collisions_of_one_name_in_a_link_both_collide(tmp_path):
+    # a world Gazebo saved (mlherd's factory): the second keeps its place under another name
+    second = ('<collision name="c"><pose>3 0 0 0 0 0</pose><geometry>%s</geometry></collision>'
+              % BOX)
+    world = load_world(world_file(tmp_path, model(link(extra=second))))
+    assert [s.name for s in world.shapes if s.collision] == ["m::l::c", "m::l::c~2"]
+    assert [s.pose[0] for s in world.shapes if s.collision] == [0.0, 3.0]
+    assert len(world.warnings) == 1 and "the second is m::l::c~2 here" in world.warnings[0]
+    sim = Simulation(SimConfig(world=world_file(tmp_path, model(link(extra=second))),
+                               spawn_robot=False))
+    try:
+        hit = sim.physics.ray_distances(np.array([3.0, 0.0, 5.0]), np.array([[0.0, 0.0, -1.0]]),
+                                        10.0)
+        assert hit[0] == pytest.approx(4.0, abs=0.01)    # the second box's top at z 1
+    finally:
+        sim.close()
+
+
+def test_a_saved_pose_fallen_out_of_the_world_leaves_the_model_where_it_was(tmp_path):
+    # a pallet saved while falling, 3.3e6 m down: Gazebo loads it; here it keeps its own pose
+    body = (model(link(), name="pallet", pose="7 -3 0.1 0 0 0")
+            + STATE % saved("pallet", "7.4 -3.9 -3.29559e+06 -2.97 -0.84 0.11"))
+    world = load_world(world_file(tmp_path, body))
+    assert world.model("pallet").pose == (7.0, -3.0, 0.1, 0.0, 0.0, 0.0)
+    assert len(world.warnings) == 1
+    assert ("model 'pallet': its saved <state> pose is 3.29559e+06 m out, beyond the 1e+06 m"
+            in world.warnings[0])
 
 
 # --- 5c. the fixture worlds made as turtlebot3_gazebo's house and autorace worlds are -------

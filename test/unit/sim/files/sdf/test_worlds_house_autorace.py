@@ -446,12 +446,13 @@ def inside(world, x, y, radius):
 
 def test_a_spawn_inside_a_pillar_is_taken_with_one_warning(tb3_world):
     """Gazebo refuses no spawn for overlap (spawn_check): the robot is spawned, and one line
-    names the model and a z_pos."""
-    assert inside(tb3_world, -1.1, 0.0, 0.105) == "ros_symbol::symbol::one_two"
-    sim = Simulation(SimConfig(world="turtlebot3_world", x=-1.1, y=0.0))
+    names the model and a z_pos. Its root is in the pillar (radius 0.15 m, axis at x -1.1), its
+    footprint (0.124 m) partly out: a pillar holding all of it is stood on (the landing rule)."""
+    assert inside(tb3_world, -1.0, 0.0, 0.105) == "ros_symbol::symbol::one_two"
+    sim = Simulation(SimConfig(world="turtlebot3_world", x=-1.0, y=0.0))
     try:
         (warning,) = sim.robot.warnings
-        assert warning.startswith("at (-1.1, 0.0, 0.0) it overlaps ros_symbol by ")
+        assert warning.startswith("at (-1.0, 0.0, 0.0) it overlaps ros_symbol by ")
         assert "z_pos" in warning and "\n" not in warning
     finally:
         sim.close()

@@ -1,16 +1,14 @@
-"""What Gazebo's URDF conversion adds to a URDF (sim/files/urdf/urdf_gazebo.py, urdf_file.py,
-urdf_meshes.py): a reference-less <gazebo> block's <static>, a root link "world" (the links
-held in place, Gazebo's links and joints, geom names), mesh files found nowhere left out with
-one warning each (then one line for the rest), and the URDF pybullet loads of a held model. No
-ROS master, no pybullet."""
+"""What Gazebo's URDF conversion adds to a URDF (sim/files/urdf/urdf_gazebo.py, urdf_file.py):
+a reference-less <gazebo> block's <static>, a root link "world" (Gazebo's links, geom names),
+mesh files found nowhere left out with one warning each (then one line for the rest). The
+conversion itself: test_urdf_to_sdf.py. No ROS master, no pybullet."""
 import os
 from xml.etree import ElementTree
 
 import pytest
 
-from tutorial_turtlebot.sim.files.urdf import urdf_meshes
 from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, read_urdf_text
-from tutorial_turtlebot.sim.files.urdf.urdf_gazebo import MAX_MISSING_LINES, anchor_name
+from tutorial_turtlebot.sim.files.urdf.urdf_gazebo import MAX_MISSING_LINES
 
 import unit_paths
 
@@ -69,43 +67,26 @@ def test_the_last_reference_less_block_decides_with_one_warning():
 
 # --- a root link "world" --------------------------------------------------------------------------
 
-def test_a_root_world_holds_the_links_fixed_to_it_and_is_no_link_of_the_model():
+def test_a_root_world_is_no_link_of_the_model():
     description = robot('<link name="world"/>', link("post"), link("plate"), link("arm"),
                         link("hand"), joint("world_joint", "world", "post"),
                         joint("weld", "post", "plate"), joint("shoulder", "post", "arm",
                                                               "revolute"),
                         joint("wrist", "arm", "hand"))
-    assert description.held_links() == ["world", "post", "plate"]
     assert description.model_links() == ["post", "arm"]            # plate, hand lumped
-    assert [j.name for j in description.model_joints()] == ["world_joint", "shoulder"]
     # the post is not lumped into world: it holds its collisions and its plate's
     assert description.collision_names() == {
         "post": ["post_collision", "post_fixed_joint_lump__plate_collision_1"],
         "arm": ["arm_collision", "arm_fixed_joint_lump__hand_collision_1"]}
 
 
-def test_a_model_without_world_or_static_holds_nothing():
-    description = robot(link("base"), link("lid"), joint("hinge", "base", "lid", "revolute"))
-    assert description.held_links() == []
-    assert description.model_links() == ["base", "lid"]
-    assert [j.name for j in description.model_joints()] == ["hinge"]
-
-
-def test_a_static_model_holds_every_link():
-    description = robot(link("base"), link("lid"), joint("hinge", "base", "lid", "revolute"),
-                        "<gazebo><static>true</static></gazebo>")
-    assert description.held_links() == ["base", "lid"]
-
-
 def test_the_fixtures():
     env = read_urdf(os.path.join(ANCHORS, "static_env.urdf"))
     assert env.static and env.root_link == "base"
     assert env.model_links() == ["base", "gate"]
-    assert [j.name for j in env.model_joints()] == ["gate_hinge"]
     post = read_urdf(os.path.join(ANCHORS, "world_anchored.urdf"))
-    assert not post.static and post.held_links() == ["world", "post"]
+    assert not post.static and post.root_link == "world"
     assert post.model_links() == ["post", "head"]
-    assert [j.name for j in post.model_joints()] == ["world_joint", "pan"]
 
 
 # --- mesh files found nowhere ---------------------------------------------------------------------
@@ -145,38 +126,3 @@ def test_a_urdf_without_missing_meshes_keeps_its_parsed_root():
     description = robot(link("a"))
     again = read_urdf_text(ElementTree.tostring(description.root, encoding="unicode"), "x")
     assert again.links == description.links and description.warnings == ()
-
-
-# --- the URDF pybullet loads of a held model ------------------------------------------------------
-
-def test_a_static_models_joints_are_fixed_and_its_meshes_collide_as_triangles():
-    env = read_urdf(os.path.join(ANCHORS, "static_env.urdf"))
-    text = urdf_meshes.bullet_urdf_text(env.root, ANCHORS, env.static, env.held_links())
-    loaded = ElementTree.fromstring(text)
-    assert {j.get("type") for j in loaded.findall("joint")} == {"fixed"}
-    collisions = {c.find("geometry/mesh").get("filename"): c.get("concave")
-                  for c in loaded.iter("collision") if c.find("geometry/mesh") is not None}
-    assert len(collisions) == 2 and set(collisions.values()) == {"yes"}
-    trough = next(path for path in collisions if "trough" in path)
-    with open(trough) as f:                       # all six triangles, not a hull's fan
-        assert sum(line.startswith("f ") for line in f) == 6
-    movable = ElementTree.fromstring(urdf_meshes.bullet_urdf_text(env.root, ANCHORS))
-    assert "revolute" in {j.get("type") for j in movable.findall("joint")}
-    assert not any(c.get("concave") for c in movable.iter("collision"))
-
-
-def test_a_root_world_is_renamed_and_emptied_for_pybullet():
-    """pybullet drops a link named world (and the joint below it): it becomes a bare link of
-    a name no other link has."""
-    description = robot('<link name="world"><visual>%s</visual></link>' % BOX, link("post"),
-                        link("world_anchor"), joint("j", "world", "post"),
-                        joint("k", "post", "world_anchor", "revolute"))
-    text = urdf_meshes.bullet_urdf_text(description.root, ".", False,
-                                        description.held_links())
-    loaded = ElementTree.fromstring(text)
-    names = [e.get("name") for e in loaded.findall("link")]
-    assert "world" not in names and "world_anchor_" in names      # the name was taken
-    anchor = next(e for e in loaded.findall("link") if e.get("name") == "world_anchor_")
-    assert anchor.find("visual") is None and anchor.find("inertial") is not None   # bare
-    assert [p.get("link") for p in loaded.findall("joint/parent")] == ["world_anchor_", "post"]
-    assert anchor_name(["a", "b"]) == "world_anchor"

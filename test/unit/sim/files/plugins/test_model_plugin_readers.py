@@ -1,4 +1,4 @@
-"""The model plugins (model_table and its modules: gazebo_ros_p3d,
+"""The model plugins (their modules of the plugin table: gazebo_ros_p3d,
 gazebo_ros_joint_state_publisher, hector_gazebo_ros_imu, hector_gazebo_ros_gps) read from a
 world model's <plugin>s (world_sdf, world_model_plugins), an included and a spawned one, and
 from a URDF's <gazebo> block (robot_plugins): each one's defaults as its source writes them,
@@ -8,7 +8,6 @@ from pathlib import Path
 import pytest
 
 from tutorial_turtlebot.errors import WorldError
-from tutorial_turtlebot.sim.files.plugins import model_table
 from tutorial_turtlebot.sim.files.plugins.gazebo_ros_joint_state_publisher import (
     JointStatePublisherPlugin)
 from tutorial_turtlebot.sim.files.plugins.gazebo_ros_p3d import P3dPlugin
@@ -181,12 +180,3 @@ def test_a_urdf_plugin_naming_no_link_is_one_warning():
     robot = read_urdf_text(text, "p3d_robot")
     assert len(robot.plugins.model_plugins) == 1
     assert any("'chassis' is not a link" in w for w in robot.plugins.warnings)
-
-
-def test_the_table_names_each_module_once():
-    assert set(model_table.MODEL_PLUGINS) == {
-        "libgazebo_ros_p3d.so", "libgazebo_ros_joint_state_publisher.so",
-        "libhector_gazebo_ros_imu.so", "libhector_gazebo_ros_gps.so",
-        "libgazebo_ros_diff_drive.so"}       # on an SDF model (a robot's is its drive)
-    assert all(model_table.is_model_plugin(f) for f in model_table.MODEL_PLUGINS)
-    assert not model_table.is_model_plugin("libgazebo_ros_skid_steer_drive.so")
