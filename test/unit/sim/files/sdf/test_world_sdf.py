@@ -280,11 +280,20 @@ def test_self_crossing_polyline_is_refused(tmp_path):
 
 @pytest.mark.parametrize("body, words", [
     ('<model name="m"><pose relative_to="x">0 0 0 0 0 0</pose></model>', "relative_to='x'"),
-    ('<model name="m"><link name="l"><collision name="c"><geometry><box/></geometry></collision>'
-     '<visual name="c"><geometry><sphere/></geometry></visual></link></model>', "m::l::c"),
 ])
 def test_garbage_content_is_refused(tmp_path, body, words):
     assert words in world_fault(world_file(tmp_path, body))
+
+
+def test_a_visual_named_as_another_geometrys_collision_loads_under_a_name_of_its_own(tmp_path):
+    # SDF's names are unique per kind (Gazebo loads this); the sim keys shapes by name alone
+    world = load_world(world_file(tmp_path, (
+        '<model name="m"><static>true</static><link name="l"><collision name="c"><geometry>'
+        '<box><size>1 1 1</size></box></geometry></collision><visual name="c"><geometry>'
+        '<sphere><radius>1</radius></sphere></geometry></visual></link></model>')))
+    assert sorted((s.name, s.collision) for s in world.shapes) == [
+        ("m::l::c", True), ("m::l::c~2", False)]
+    assert len(world.warnings) == 1 and "m::l::c~2" in world.warnings[0]
 
 
 def test_not_an_sdf_file(tmp_path):
