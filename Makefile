@@ -62,6 +62,7 @@ train: setup
 	@$(ROS_ENV) && bash tools/install_extra.sh train && python3 tools/train_stage1.py $(TRAIN_ARGS)
 
 # make slam / make nav: not part of make test. The e-Manual's SLAM and Navigation chapters
+# (make nav-extra: only the extra's build, as make test does where NAV_SRC is set)
 # (doc/slam.md, doc/navigation.md). The navigation extra (gmapping, amcl, map_server, move_base)
 # is built on first use (tools/install_extra.sh nav: catkin_ws/nav, once). make slam: the sim in
 # turtlebot3_world, gmapping, RViz and keyboard teleop in this terminal. make nav: the sim,
@@ -70,7 +71,10 @@ train: setup
 NAV_ENV := if [ -f $(WS)/nav/devel/setup.bash ]; then source $(WS)/nav/devel/setup.bash; \
 	else $(ROS_ENV); fi
 MAP ?= $(HOME)/map.yaml
-.PHONY: slam nav
+.PHONY: slam nav nav-extra
+nav-extra: setup
+	@bash tools/install_extra.sh nav
+
 slam: setup
 	@bash tools/install_extra.sh nav && $(NAV_ENV) && roslaunch tutorial_turtlebot \
 	turtlebot3_slam.launch sim:=true teleop:=true model:=$(MODEL)

@@ -17,6 +17,10 @@ Measured (Burger in turtlebot3_world unless said):
                     sensor computed): CPU
   jitter            the same: per topic, how far the gap between two arrivals differs from
                     the gap between their stamps (p50, p99, max in ms; bench/jitter.py)
+  nav               bench/nav_load.py: the sim at real time under the SLAM and Navigation
+                    chapters' clients (gmapping; map_server, amcl and move_base), the Burger
+                    turning in place in turtlebot3_world: sim CPU and achieved factor (skipped,
+                    in one row, without the navigation extra)
   fast              real_time_factor 0, every sensor subscribed / only /odom: achieved factor;
                     with every sensor, the loop's wall time per sim second split by part
                     (gazebo/part_times.py): physics (stepping), sensors (rays, IMU, odometry,
@@ -84,7 +88,7 @@ Measured (Burger in turtlebot3_world unless said):
                     end, the client's /scan rate (not in the default groups: it takes about
                     22 minutes)
 
-``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, jitter, fast, world,
+``--only GROUP[,GROUP]`` runs some groups of rows (startup, realtime, nav, jitter, fast, world,
 subscribers, camera, render, meshes, meshworld, meshcamera, multi, learning, soak, hostile); the
 default is all of them but soak and hostile.
 """
@@ -747,6 +751,23 @@ def realtime_rows(runs, row):
         "%.1f" % median([f[1] for f in floors]), "% core")
 
 
+def nav_rows(runs, row):
+    """The nav group: the sim's CPU at real time with gmapping or the navigation stack running
+    on it (bench/nav_load.py), beside the every-sensor row; skipped without the extra."""
+    import nav_load
+    env = nav_load.nav_env()
+    if env is None:
+        row("real time, gmapping / navigation stack running: sim CPU", "skipped", "",
+            "the navigation extra is not installed: bash tools/install_extra.sh nav")
+        return
+    for kind, label in (("slam", "gmapping (turtlebot3_slam.launch)"),
+                        ("nav", "map_server, amcl, move_base (turtlebot3_navigation.launch)")):
+        figures = [nav_load.measure(kind, env) for _ in range(runs)]
+        row("real time, %s: sim CPU" % label, "%.1f" % median([f[1] for f in figures]),
+            "% core")
+        row("  the same: achieved factor", "%.2f" % median([f[0] for f in figures]), "x")
+
+
 def jitter_rows(runs, row):
     """The jitter group: each topic's arrival-interval error at real time."""
     jitter = [measure_jitter() for _ in range(runs)]
@@ -1164,6 +1185,7 @@ class Group(NamedTuple):
 GROUP_TABLE = (
     Group("startup", startup_rows),
     Group("realtime", realtime_rows),
+    Group("nav", nav_rows),
     Group("jitter", jitter_rows),
     Group("fast", fast_rows),
     Group("world", world_rows),

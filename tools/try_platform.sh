@@ -5,6 +5,9 @@
 #   tools/try_platform.sh debian13              make test in a Debian 13 (trixie) root
 #   tools/try_platform.sh debian13 unit         only the unit tests (make unit)
 #   tools/try_platform.sh debian13 --root-only  build (or check) the root, run nothing
+#   TRY_PLATFORM_NAV_SRC=DIR tools/try_platform.sh debian13 nav-extra rostest
+#       the navigation extra built there from DIR (its NAV_SRC, mounted read-only as /nav_src),
+#       then every rostest: the SLAM and navigation ones run. Without it no NAV_SRC goes in.
 # Needs root (debootstrap, chroot and mounts) and the Debian registry; nothing else.
 # The root is kept between runs in $TRY_PLATFORM_CACHE (default /var/cache/tutorial_turtlebot),
 # and with it apt's packages and the pybullet wheel that the set-up builds, so a second run
@@ -22,7 +25,7 @@ usage="usage: tools/try_platform.sh debian13 [--root-only | MAKE_TARGET...] (def
 [ $# -ge 1 ] || fail "$usage"
 case "$1" in
   debian13) SUITE=trixie ;;
-  -h|--help) sed -n '2,12p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  -h|--help) sed -n '2,15p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) fail "unknown platform '$1': this script knows debian13. $usage" ;;
 esac
 PLATFORM=$1
@@ -145,6 +148,13 @@ mount_into_root /sys -t sysfs sysfs
 mount_into_root /dev --rbind /dev
 mount --make-rslave "$FS/dev"
 mount_into_root /tmp -t tmpfs tmpfs
+nav_env=()
+if [ -n "${TRY_PLATFORM_NAV_SRC:-}" ]; then
+  [ -d "$TRY_PLATFORM_NAV_SRC" ] || fail "TRY_PLATFORM_NAV_SRC=$TRY_PLATFORM_NAV_SRC is no folder"
+  mount_into_root /nav_src --bind "$TRY_PLATFORM_NAV_SRC"
+  mount -o remount,bind,ro "$FS/nav_src"
+  nav_env=(NAV_SRC=/nav_src)
+fi
 
 # --- the clone and the run -----------------------------------------------------------------------
 
@@ -158,7 +168,7 @@ set +e
 chroot "$FS" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb CI="${CI:-}" \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
   PIP_CERT=/etc/ssl/certs/host-ca-bundle.crt PIP_DISABLE_PIP_VERSION_CHECK=1 \
-  PIP_DEFAULT_TIMEOUT=180 \
+  PIP_DEFAULT_TIMEOUT=180 "${nav_env[@]}" \
   bash -c "cd $CLONE && make ${TARGETS[*]}" </dev/null 2>&1 | tee "$log"
 status=${PIPESTATUS[0]}
 set -e

@@ -24,9 +24,10 @@ INERTIAL = ('<inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" izz="
             'ixy="0" ixz="0" iyz="0"/></inertial>')
 FLOOD_SECONDS = 12.0     # wall s each flooding process publishes for
 # Sim s per wall s under the flood. A starved sim stops (0.0 before the loop's queues were
-# bounded); a paced one runs at 1.00 on a quiet machine, and at 0.68 to 0.80 on this 2-core
-# machine with another sim and a test suite running beside it: the bar is "not starved".
-MIN_FACTOR = 0.6
+# bounded); a paced one runs at 1.00 on a quiet machine, 0.68 to 0.80 on this 2-core machine
+# with another sim and a test suite beside it, and 0.43 with a load average of 4. The bar is
+# "not starved", whatever else the machine runs: how fast it goes is make bench's to show.
+MIN_FACTOR = 0.25
 FLOODERS = 3
 
 

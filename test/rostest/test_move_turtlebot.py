@@ -4,7 +4,7 @@ stops the robot when interrupted; bad arguments get a usage line and status 2.
 
 The test starts ``move_turtlebot`` as a user does (the package's executable, arguments on the
 command line) and interrupts it with SIGINT, what Ctrl-C sends. Path and rates are measured
-between odometry stamps (sim time), so the test holds at any real-time factor.
+between odometry stamps (sim time); the launch file runs the sim at real time.
 """
 import math
 import os

@@ -98,6 +98,28 @@ class SdfRobotTest(SimTestCase):
                         "the respawned robot did not drive")
         self.drive(0.0)
 
+    def test_6_robot_namespace_puts_its_plugins_topics_there(self):
+        """-robot_namespace gives every plugin of the SDF without a <robotNamespace> one, as
+        gazebo_ros' spawn service does: the second robot's drive and laser are in /bot2."""
+        status, output = spawn_model("-sdf", "-file", MODEL, "-model", "sdfbot2",
+                                     "-robot_namespace", "bot2", "-x", "-1.5", "-y", "1.5")
+        self.assertEqual(status, 0, output)
+        self.assertTrue(wait_for(lambda: publishers("/bot2/odom") and publishers("/bot2/scan"),
+                                 WAIT), "no /bot2/odom and /bot2/scan")
+        cmd = rospy.Publisher("/bot2/cmd_vel", Twist, queue_size=1)
+        try:
+            self.assertTrue(wait_for(lambda: cmd.get_num_connections() > 0, WAIT))
+            start, other = self.gz.position("sdfbot2"), self.gz.position("sdfbot")
+            cmd.publish(Twist(linear=Vector3(0.2, 0, 0)))
+            self.assertTrue(wait_for(lambda: math.dist(self.gz.position("sdfbot2")[:2],
+                                                       start[:2]) > 0.1, WAIT),
+                            "the namespaced robot did not drive on /bot2/cmd_vel")
+            cmd.publish(Twist())
+        finally:
+            cmd.unregister()
+        self.assertLess(math.dist(self.gz.position("sdfbot")[:2], other[:2]), 0.02,
+                        "the first robot moved on the second's command")
+
 
 if __name__ == "__main__":
     rostest.rosrun("tutorial_turtlebot", "test_sdf_robot", SdfRobotTest)

@@ -69,6 +69,17 @@ def urdf_text(model):
         return f.read()
 
 
+def urdf_body(client, text):
+    """The pybullet body id of a robot's URDF ``text`` built as the sim builds a robot's body
+    (engine.robot_body: the SDF model of its URDF, built by movable_bodies), its root link at
+    the origin."""
+    from tutorial_turtlebot.sim.engine.movable_bodies import model_body
+    from tutorial_turtlebot.sim.engine.robot_body import robot_model
+    from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf_text
+
+    return model_body(robot_model(read_urdf_text(text, "test URDF"))[0], client)
+
+
 def write(folder, name, text):
     """Write ``text`` to the file ``name`` in ``folder``; return its path."""
     path = os.path.join(str(folder), name)

@@ -13,6 +13,7 @@
 # Ubuntu with ROS Noetic: the distribution's packages (ros-noetic-*) are installed instead.
 #
 # Ends by printing the line that gives a shell where rosrun finds this package and the extra.
+# NAV_JOBS: compile jobs (default: every core; make test builds with one beside the unit tests).
 # Exit status: 0 built (or already built), 1 any failure, 3 the sources cannot be had.
 set -euo pipefail
 
@@ -167,7 +168,7 @@ if ! (
   # shellcheck disable=SC1091
   source "$WS/devel/setup.bash"
   export PATH="/usr/bin:$PATH"
-  catkin_make -C "$NAV_WS" "${ARGS[@]}" -j"$(nproc)"
+  catkin_make -C "$NAV_WS" "${ARGS[@]}" -j"${NAV_JOBS:-$(nproc)}"
 ) >"$log" 2>&1; then
   grep -E 'error|Error' "$log" | tail -n 10 >&2
   fail "catkin_make failed (whole log: $log)"

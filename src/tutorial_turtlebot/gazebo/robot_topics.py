@@ -34,6 +34,7 @@ from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_srvs.srv import Empty, EmptyResponse
 
 from .camera_publisher import CameraPublisher
+from .camera_rate_watch import CameraRateWatch
 from .impl.packed_messages import (PackedImu, PackedJointState, PackedLaserScan, PackedOdometry,
                                    PackedTransform)
 from .part_times import TIMES
@@ -76,6 +77,8 @@ class RobotTopics:
         self.sensor_updates.update((sensor.output, 0) for sensor in robot.lasers + robot.cameras)
         # camera ticks the loop skipped, being behind the wall clock (LoopPacer.frame_in_time)
         self.frames_skipped = 0
+        camera = robot.schedules.get(robot.cameras[0].output) if robot.cameras else None
+        self.camera_watch = CameraRateWatch(camera.rate_hz if camera else 0.0)
 
         def advertise(topic, msg_type, queue_size=1):
             publisher = make_publisher(topic, msg_type, queue_size=queue_size)
@@ -226,10 +229,14 @@ class RobotTopics:
         self.pubs["imu"].publish_packed(packed)
         self.sensor_updates["imu"] += 1
 
+    def frame_wanted(self, output: str) -> bool:
+        """Whether anybody subscribes to a topic of camera ``output`` that needs its frame."""
+        return any(pub.get_num_connections() > 0 for pub in self._frame_pubs.get(output, ()))
+
     def _publish_camera(self, stamp, index: int = 0) -> None:
         """Camera ``index``'s tick; a frame is rendered (and counted) only for a subscriber."""
         output = self.robot.cameras[index].output
-        if any(pub.get_num_connections() > 0 for pub in self._frame_pubs[output]):
+        if self.frame_wanted(output):
             self.sensor_updates[output] += 1
         TIMES.switch("sensors")   # rendering; its messages are built from the frame
         self.cameras[index].publish(stamp)

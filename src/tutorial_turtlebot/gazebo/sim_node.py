@@ -19,7 +19,8 @@ Publications (relative names resolve in the node's namespace, as Gazebo's plugin
   A message type nobody subscribes to is not even computed.
 Services: ~reset_simulation, ~reset_world, ~pause_physics, ~unpause_physics and the rest of
   Gazebo's world API: see world_api (which reaches the node through its public methods)
-  (none of it with ~enable_ros_network false: then only /clock and the robots' topics)
+  (none of it with ~enable_ros_network false: then only /clock and the robots' topics),
+  advertised just after the robots' topics, while the first steps run (node_start)
 Parameters (private):
   ~model (burger)             burger, waffle or waffle_pi
   ~spawn_robot (true)         false: no robot of its own; robots come by spawn_urdf_model
@@ -51,43 +52,29 @@ Parameters (private):
                               reconfigure); /clock and the robots' plugin topics stay
 """
 import math
-import os
-import signal
-import sys
 import time
 
-import rosgraph.names
 import rospy
 from rosgraph_msgs.msg import Clock
 from tf2_msgs.msg import TFMessage
 
-from .impl import (connection_caps, publisher_connects, service_guard, tcpros_guard,
-                   unreachable_publishers)
-from .impl.own_clock import own_the_clock, set_time
+from .impl.own_clock import set_time
 from .loop_pacer import WAKE_CHECK, LoopPacer
 from .loop_requests import ANSWER_TIMEOUT, Busy, LoopRequests
-from .impl.master_watch import MasterWatch
-from .world_api import WorldApi
-from ..errors import RequestError, UserError, one_line
-from ..node_output import line_buffered
-from ..node_params import checked_number, converted
+from ..errors import RequestError, one_line
 from ..sim.kinematics import yaw_from_quat
 from .impl.nonblocking_publisher import make_nonblocking
 from .impl.packed_messages import PackedClock
 from . import part_times
 from .part_times import TIMES
-from ..sim.world.pacing import check_rtf
 from .robot_topics import RobotTopics
 from .running_topics import OUTPUT_ERROR_PERIOD
 from .model_plugin_topics import ModelPluginTopics
 from .world_sensor_topics import WorldSensorTopics
 from .send_queue import SendQueue
-from .single_instance import refuse_if_running
-from ..sim.world.simulation import SimConfig, Simulation
+from ..sim.world.simulation import Simulation
 from ..sim.world.model_plugins import MODEL_PLUGINS
 from ..sim.world.world_sensors import WORLD_SENSORS
-from ..sim.files.meshes import mesh_cache
-from ..sim.files.sdf.world_catalogue import world_from_command_line
 
 SHUTDOWN_CHECK_STEPS = 200
 # The longest (wall s) the loop keeps the GIL while another thread of the node waits for it:
@@ -102,45 +89,6 @@ FAST_RAY_THREADS = 2
 # one line, at most once this many wall seconds per robot and output.
 
 
-_private_params = None   # the node's private parameters, read from the master once
-
-
-def _param(name, default, kind, allow_empty=False):
-    """A private param converted to ``kind`` (float, int, bool, str); UserError if it cannot be.
-    With ``allow_empty`` an empty value gives None. All of them come in one master call."""
-    global _private_params
-    if _private_params is None:
-        params = rospy.get_param("~", {})
-        _private_params = params if isinstance(params, dict) else {}
-    value = _private_params.get(name, default)
-    if allow_empty and (value is None or (isinstance(value, str) and value.strip() == "")):
-        return None
-    return converted("~" + name, value, kind)
-
-
-def read_config() -> SimConfig:
-    """The SimConfig named by the node's private params (raises UserError when one is bad)."""
-    return SimConfig(
-        model=_param("model", "burger", str),
-        world=world_from_command_line(_param("world", "turtlebot3_world", str)),
-        x=_param("x_pos", None, float, allow_empty=True),
-        y=_param("y_pos", None, float, allow_empty=True),
-        z=_param("z_pos", 0.0, float),
-        yaw=_param("yaw", None, float, allow_empty=True),
-        camera=_param("camera", None, bool, allow_empty=True),
-        lidar_model=_param("lidar_model", "gazebo", str),
-        lidar_samples=_param("lidar_samples", None, int, allow_empty=True),
-        robot_name=_param("robot_name", None, str, allow_empty=True),
-        odom_source=_param("odom_source", None, str, allow_empty=True),
-        spawn_robot=_param("spawn_robot", True, bool),
-        clamp_cmd_vel=_param("clamp_cmd_vel", True, bool),
-        gui=_param("gui", False, bool),
-        time_step=_param("max_step_size", 0.0025, float),
-        clock_rate=_param("clock_rate", 100.0, float),
-        seed=_param("seed", 0, int),
-    )
-
-
 class SimNode:
     """Converts between the Simulation and ROS messages, and runs the stepping loop (``spin``).
 
@@ -153,10 +101,10 @@ class SimNode:
 
     def __init__(self, sim: Simulation, real_time_factor: float, paused: bool,
                  status_period: float, pub_clock_frequency: float = 1000.0,
-                 enable_ros_network: bool = True):
+                 enable_ros_network: bool = True, model_states_rate: float = 100.0):
         self.sim = sim
         self.requests = LoopRequests()   # what callbacks hand to the loop, and its wake-up
-        self.stop_requested = False  # set by the SIGINT/SIGTERM handler of main()
+        self.stop_requested = False  # set by the SIGINT/SIGTERM handler of node_start.main()
         self.pacer = LoopPacer(real_time_factor, self.requests.wake, self._stopping,
                                pub_clock_frequency)
         self.paused = paused   # read by get_physics_properties; set by pause() and unpause()
@@ -183,13 +131,26 @@ class SimNode:
         self.model_plugins = ModelPluginTopics(sim, self.advertise, self)
         self.add_output(MODEL_PLUGINS, self.model_plugins.publish)
         # Gazebo's world API: reset, pause, model/link states, spawn, delete, physics
-        # (gazebo/world_api.py); advertised after every sensor topic (test_camera.py waits for
-        # it as the last). With ~enable_ros_network false, none of it (as gazebo_ros).
+        # (gazebo/world_api.py), made by start_world_api after every sensor topic (test_camera.py
+        # waits for it as the last; node_start: after the robots' topics, in a thread). Its
+        # model_states schedule starts now, with the world's. With ~enable_ros_network false,
+        # none of it (as gazebo_ros).
         self.world_api = None
-        if enable_ros_network:
-            self.world_api = WorldApi(self, _param("model_states_rate", 100.0, float))
-        else:
+        self.enable_ros_network = enable_ros_network
+        self.model_states_rate = model_states_rate if enable_ros_network else 0.0
+        if self.model_states_rate > 0:
+            self.add_output("model_states", lambda _stamp: None)   # until the world API's
+            sim.add_schedule("model_states", self.model_states_rate)
+        if not enable_ros_network:
             rospy.loginfo("gazebo: ~enable_ros_network is false: no world API topics or services")
+
+    def start_world_api(self) -> None:
+        """Gazebo's world API on this node (world_api.WorldApi), unless ~enable_ros_network is
+        false. Its publishing runs in the loop; making it touches nothing the loop uses, so it
+        may run in any thread (node_start runs it in one of its own)."""
+        if self.enable_ros_network:
+            from .world_api import WorldApi   # gazebo_msgs' services, spawning: not on the
+            self.world_api = WorldApi(self, self.model_states_rate)   # way to the first /scan
 
     # --- the node's public API (world_api) ------------------------------------------------------
 
@@ -293,13 +254,27 @@ class SimNode:
             topics = self.robot_topics.get(robot.name)
             if topics is None:   # (its topics could not be made: it is being taken out)
                 continue
-            if name == "camera" and not self.pacer.frame_in_time(self.sim.time):
-                topics.frames_skipped += 1   # the loop is late: no image, no camera_info
+            if name == "camera" and not self._camera_in_time(robot, topics):
                 continue
             try:
                 topics.publishers[name](stamp)
             except Exception as err:  # noqa: BLE001 - one robot's output must not end the node
                 self._output_failed(robot.name, name, err)
+
+    def _camera_in_time(self, robot, topics) -> bool:
+        """Whether the robot's camera frame due now is drawn (LoopPacer.frame_in_time: not
+        while the loop is late; then no image, no camera_info). The first time a subscribed
+        camera keeps less than its rate, one warning says the rate it keeps."""
+        in_time = self.pacer.frame_in_time(self.sim.time)
+        topics.frames_skipped += not in_time
+        if topics.frame_wanted("camera"):
+            kept = topics.camera_watch.count(not in_time)
+            if kept is not None:
+                rospy.logwarn("gazebo: robot %s: its camera keeps %.1f of its %g images per "
+                              "sim second: the loop is behind the wall clock and skips frames "
+                              "(a smaller image or rate keeps them all)", robot.name, kept,
+                              topics.camera_watch.rate_hz)
+        return in_time
 
     def _output_failed(self, robot: str, output: str, err: Exception) -> None:
         """One line about a robot's output that failed, at most once every OUTPUT_ERROR_PERIOD
@@ -469,108 +444,3 @@ class SimNode:
         rospy.loginfo("sim time %.1f s, real-time factor %s, %s%s",
                       self.sim.time, "n/a" if factor is None else "%.2f" % factor,
                       "; ".join(poses) or "no robot", " (paused)" if self.paused else "")
-
-
-def _node_params():
-    """(SimConfig, real_time_factor, paused, status_period, pub_clock_frequency) of the node's
-    private params; UserError (one line) when one is bad. gui:=true without a display runs
-    headless, with a warning."""
-    config = read_config()
-    real_time_factor = _param("real_time_factor", 1.0, float)
-    try:
-        if not math.isfinite(real_time_factor):
-            raise ValueError("real_time_factor must be finite, got %r" % real_time_factor)
-        check_rtf(real_time_factor)
-    except ValueError as err:
-        raise UserError("parameter ~%s" % err) from None
-    paused = _param("paused", False, bool)
-    status_period = _param("status_period", 10.0, float)
-    pub_clock_frequency = checked_number(
-        "~pub_clock_frequency", _param("pub_clock_frequency", 1000.0, float), "Hz, 0 = no limit",
-        at_least=0.0)
-    if config.gui and not os.environ.get("DISPLAY"):
-        rospy.logwarn("gazebo: gui:=true but there is no display (DISPLAY is unset): "
-                      "running headless")
-        config.gui = False
-    return config, real_time_factor, paused, status_period, pub_clock_frequency
-
-
-def _log_warning(line: str) -> None:
-    """One warning line as it is (at most 200 characters): /rosout names the node."""
-    rospy.logwarn("%s", line)
-
-
-def _log_start(sim: Simulation, config: SimConfig, real_time_factor: float) -> None:
-    """What the world file names but Gazebo would skip, what its building could not draw as
-    its files say (sim.physics.warnings: textures), the robot (or none) and the camera."""
-    for warning in tuple(sim.world.warnings) + tuple(sim.physics.warnings):
-        _log_warning(warning)
-    if sim.robot is not None:
-        rospy.loginfo("%s in %s at (%.2f, %.2f) yaw %.2f, physics step %g s, real-time factor %s",
-                      config.model, config.world, sim.spawn[0], sim.spawn[1], sim.spawn[3],
-                      config.time_step, real_time_factor or "max")
-    else:
-        rospy.loginfo("%s without a robot (spawn_model adds robots), physics step %g s, "
-                      "real-time factor %s", config.world, config.time_step,
-                      real_time_factor or "max")
-    if sim.robot is not None and sim.robot.camera is not None:
-        spec = sim.robot.camera_spec
-        rospy.loginfo("camera %dx%d, %.1f deg, %g Hz, rendered by %s", spec.width, spec.height,
-                      math.degrees(spec.hfov), spec.rate, sim.robot.camera.renderer_name)
-
-
-def main() -> None:
-    """Entry point of ``scripts/sim``."""
-    # A second /gazebo would make the master shut the running one down: look before registering.
-    try:
-        refuse_if_running(rosgraph.names.ns_join(rospy.names.get_namespace(), "gazebo"))
-    except UserError as err:
-        sys.stderr.write("gazebo: %s\n" % err)
-        sys.exit(2)
-    # rospy's own SIGINT handler shuts ROS down from inside whatever the loop is doing (often a
-    # publish, holding its locks) and could hang there; here the signal only asks the loop to
-    # stop, and the loop shuts ROS down when it is between steps.
-    sys.setswitchinterval(GIL_SWITCH_INTERVAL)
-    line_buffered()
-    rospy.init_node("gazebo", disable_signals=True)
-    # Before the first topic and service: a client that stalls in its handshake (or is not a
-    # ROS client at all) must not keep the others out.
-    tcpros_guard.install()
-    # Threads are a budget: capped subscribers and callers, closed and stalled subscribers
-    # dropped, a bounded number of publishers connected to (before unreachable_publishers).
-    connection_caps.install()
-    publisher_connects.install()
-    # Before the first subscription: a publisher it cannot reach is named in one line.
-    unreachable_publishers.install()
-    # Before the first service: a malformed request is one throttled line, not a traceback.
-    service_guard.install()
-    # The sim is the clock: its rospy time is set in _publish_clock, not from its own /clock.
-    own_the_clock()
-    mesh_cache.warning_sink = _log_warning     # the disk mesh cache's one line, if any
-    try:
-        config, real_time_factor, paused, status_period, pub_clock_frequency = _node_params()
-        enable_ros_network = _param("enable_ros_network", True, bool)
-        sim = Simulation(config)
-    except UserError as err:
-        rospy.logfatal("gazebo: %s", err)
-        sys.exit(2)
-    _log_start(sim, config, real_time_factor)
-    try:
-        node = SimNode(sim, real_time_factor, paused, status_period, pub_clock_frequency,
-                       enable_ros_network)
-    except RequestError as err:   # the robot's topics (sync_robots)
-        rospy.logfatal("gazebo: %s", err)
-        sim.close()
-        sys.exit(2)
-    # A restarted master is told again of every topic, service and robot description.
-    MasterWatch(lambda: [robot.namespace for robot in list(sim.robots.values())]).start()
-
-    def request_stop(_signum, _frame):
-        node.stop_requested = True
-    signal.signal(signal.SIGINT, request_stop)
-    signal.signal(signal.SIGTERM, request_stop)
-    try:
-        node.spin()
-    finally:
-        sim.close()
-        rospy.signal_shutdown("simulation stopped")

@@ -172,9 +172,8 @@ class WorldApi:
         self.control = WorldControl(node.sim)
         self.pubs = {"model_states": node.advertise("~model_states", ModelStates, 10),
                      "link_states": node.advertise("~link_states", LinkStates, 10)}
-        if model_states_rate > 0:
+        if model_states_rate > 0:   # its schedule is the node's, set before the first step
             node.add_output("model_states", self._publish_states)
-            self.sim.add_schedule("model_states", model_states_rate)
         self.topic_pace = CallbackPace()   # a flooding publisher of the two topics is slowed
         rospy.Subscriber("~set_model_state", ModelState, self._on_set_model_state, queue_size=10)
         rospy.Subscriber("~set_link_state", LinkState, self._on_set_link_state, queue_size=10)
@@ -363,7 +362,7 @@ class WorldApi:
             name, namespace = req.model_name, req.robot_namespace
             pose = self.run_in_loop(lambda: self.control.spawn_pose(
                 name, pose_in(req.initial_pose), req.reference_frame, namespace))
-            prepared = prepare_spawn(name, req.model_xml, pose, kind)
+            prepared = prepare_spawn(name, req.model_xml, pose, kind, robot_namespace=namespace)
             built = self.run_in_loop(lambda: self._build(prepared, pose, namespace))
             # what Gazebo would skip too, then what the building could not draw as its files say
             for warning in (prepared.world.warnings if prepared.world is not None else ()) + built:

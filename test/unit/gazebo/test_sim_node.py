@@ -5,7 +5,8 @@ in one line while the others go on (both once ended the node)."""
 import pytest
 
 from tutorial_turtlebot.errors import RequestError, UserError
-from tutorial_turtlebot.gazebo import robot_topics, sim_node, world_api
+from tutorial_turtlebot.gazebo import (camera_rate_watch, node_start, robot_topics, sim_node,
+                                       world_api)
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.world.world_control import WorldControl
 
@@ -131,7 +132,7 @@ def test_the_start_logs_every_warning_through_rospy_in_lines_of_at_most_200_char
     config = SimConfig(model="burger", world=str(world), x=-2.0, y=0.0)
     sim = Simulation(config)
     try:
-        sim_node._log_start(sim, config, 1.0)
+        node_start._log_start(sim, config, 1.0)
     finally:
         sim.close()
     searched = [line for line in logged if "model:// searched" in line]
@@ -204,3 +205,31 @@ def test_a_spawned_models_warning_is_one_log_line_of_at_most_200_characters():
     assert spawn_warning("crate", "x.dae: texture halved") == "spawn crate: x.dae: texture halved"
     line = spawn_warning("m" * 256, "w" * 200)
     assert len(line) == 200 and line.startswith("spawn " + "m" * 37 + "...: w")
+
+
+def test_a_camera_that_keeps_too_few_frames_says_so_once(node, monkeypatch):
+    """Subscribed, a camera that skips frames warns once with the rate it keeps."""
+    node.control.spawn("tb3", urdf_text("waffle_pi"), at(0.0, 0.0), kind="urdf",
+                       robot_namespace="tb3")
+    node.sync_robots()
+    topics = node.robot_topics["tb3"]
+    topics.publishers["camera"] = lambda stamp: None
+    monkeypatch.setattr(topics, "frame_wanted", lambda output: True)
+    said = []
+    monkeypatch.setattr(sim_node.rospy, "logwarn", lambda fmt, *args: said.append(fmt % args))
+    node.pacer = StubPacer()
+    ticks = 0
+    while ticks < 2 * 30 * camera_rate_watch.WINDOW_SECONDS:     # two windows at 30 Hz
+        node.pacer.in_time = ticks % 3 != 0                      # one frame in three is late
+        due = node.sim.step()
+        ticks += any(name == "camera" for _, name in due)
+        node._publish_due(due)
+    assert said == ["gazebo: robot tb3: its camera keeps 20.0 of its 30 images per sim second: "
+                    "the loop is behind the wall clock and skips frames (a smaller image or "
+                    "rate keeps them all)"]
+
+
+def test_the_camera_rate_watch_is_quiet_while_frames_are_kept():
+    watch = camera_rate_watch.CameraRateWatch(10.0)
+    assert all(watch.count(i % 20 == 0) is None for i in range(200))    # 95 % kept
+    assert watch.count(True) is None and not watch.said

@@ -100,16 +100,19 @@ def test_enable_ros_network_false_offers_only_the_clock(monkeypatch, enabled):
     made, apis = [], []
     monkeypatch.setattr(sim_node.SimNode, "advertise",
                         lambda self, topic, msg_type, queue_size=1: made.append(topic))
-    monkeypatch.setattr(sim_node, "WorldApi", lambda node, rate: apis.append(node) or "api")
-    monkeypatch.setattr(sim_node, "_private_params", {})
+    monkeypatch.setattr(world_api, "WorldApi", lambda node, rate: apis.append(rate) or "api")
     monkeypatch.setattr(sim_node.rospy, "loginfo", lambda *args: None)
     sim = Simulation(SimConfig(world="empty", spawn_robot=False))
     try:
-        node = sim_node.SimNode(sim, 1.0, False, 0.0, enable_ros_network=enabled)
+        node = sim_node.SimNode(sim, 1.0, False, 0.0, enable_ros_network=enabled,
+                                model_states_rate=50.0)
+        # the states' schedule starts with the world's, before the first step; the API after
+        assert ("model_states" in sim.schedules) == enabled and node.world_api is None
+        node.start_world_api()
     finally:
         sim.close()
     assert made == ["/clock"]
-    assert (node.world_api is not None) == enabled and len(apis) == int(enabled)
+    assert (node.world_api is not None) == enabled and apis == [50.0] * int(enabled)
 
 
 # --- the answers of the new services --------------------------------------------------------------

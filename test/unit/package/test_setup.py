@@ -5,6 +5,7 @@ The venv tests set up a venv of their own (TUTORIAL_TURTLEBOT_WS=<tmp>, `--deps-
 as an interrupted `make clean` or a stray system Python would, and run the set-up again: about
 two minutes, from pip's cache. They run once, under catkin_ws/venv's Python.
 """
+import importlib.util
 import os
 import shutil
 import subprocess
@@ -85,6 +86,24 @@ def workspace_digest(ws):
     out = subprocess.run(["bash", "-c", script], capture_output=True, text=True, check=True,
                          env=dict(os.environ, SETUP=SETUP, WS=str(ws), ROOT=ROOT))
     return out.stdout.strip()
+
+
+def test_the_set_up_byte_compiles_the_package_and_the_generated_messages(tmp_path):
+    """compile_python: a Python that writes no bytecode itself (PYTHONDONTWRITEBYTECODE) would
+    compile every module at every start of the sim; the set-up leaves the .pyc beside them."""
+    module = tmp_path / "src" / "tutorial_turtlebot" / "gazebo" / "node.py"
+    message = tmp_path / "ws" / "devel" / "lib" / "python3" / "dist-packages" / "m" / "_M.py"
+    for path in (module, message):
+        path.parent.mkdir(parents=True)
+        path.write_text("VALUE = 1\n")
+    script = ('say() { :; }; eval "$(sed -n \'/^compile_python() {/,/^}/p\' "$SETUP")"; '
+              'compile_python')
+    subprocess.run(["bash", "-c", script], check=True, env=dict(
+        os.environ, SETUP=SETUP, ROOT=str(tmp_path), WS=str(tmp_path / "ws"), VENV=sys.prefix))
+    for path in (module, message):
+        assert os.path.isfile(importlib.util.cache_from_source(str(path))), path
+    with open(SETUP) as handle:
+        assert handle.read().count("build_workspace; compile_python") == 2   # make and --test
 
 
 def test_the_build_stamp_ignores_the_cmakelists_catkin_make_writes(tmp_path):

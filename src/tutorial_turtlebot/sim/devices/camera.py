@@ -7,6 +7,7 @@
 Images are row-major, row 0 at the top, column 0 at the left (sensor_msgs/Image order).
 Units: metres, radians.
 """
+import importlib.util
 import io
 import math
 from dataclasses import dataclass
@@ -15,11 +16,6 @@ from typing import List, Optional, Sequence, Tuple
 import numpy as np
 
 from ..files.plugins.robot_plugin_types import CameraSpec
-
-try:  # Debian/Ubuntu python3-pil, PyPI Pillow
-    from PIL import Image as _PilImage
-except ImportError:  # pragma: no cover - depends on the machine
-    _PilImage = None
 
 # The RealSense R200 plugin (gazebo_ros_openni_kinect) publishes depths and points only in
 # (pointCloudCutoff, pointCloudCutoffMax); everything else is NaN.
@@ -155,17 +151,20 @@ def pointcloud_bytes(points: np.ndarray, colours: Optional[np.ndarray] = None):
 
 
 def jpeg_available() -> bool:
-    """Whether ``jpeg_bytes`` can encode here (needs PIL: python3-pil / Pillow)."""
-    return _PilImage is not None
+    """Whether ``jpeg_bytes`` can encode here (needs PIL: python3-pil / Pillow), without
+    importing it."""
+    return importlib.util.find_spec("PIL") is not None
 
 
 def jpeg_bytes(rgb: np.ndarray, quality: int = 80) -> bytes:
     """JPEG file bytes of an rgb8 image (height, width, 3), for sensor_msgs/CompressedImage
     (format "rgb8; jpeg compressed bgr8", as image_transport's compressed plugin names it)."""
-    if _PilImage is None:
+    try:   # at the first image, not at start-up: PIL takes some 50 ms to import
+        from PIL import Image
+    except ImportError:  # pragma: no cover - depends on the machine
         raise RuntimeError("JPEG encoding needs PIL: install python3-pil (Debian, Ubuntu) "
-                           "or Pillow (PyPI)")
-    image = _PilImage.fromarray(np.ascontiguousarray(rgb, dtype=np.uint8))
+                           "or Pillow (PyPI)") from None
+    image = Image.fromarray(np.ascontiguousarray(rgb, dtype=np.uint8))
     buffer = io.BytesIO()
     image.save(buffer, format="JPEG", quality=int(quality))
     return buffer.getvalue()

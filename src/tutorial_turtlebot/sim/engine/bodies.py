@@ -105,15 +105,6 @@ class Body:
     def set_twist(self, twist: Twist) -> None:
         self.client.resetBaseVelocity(self.uid, twist[0], twist[1])
 
-    def root_link(self) -> str:
-        """The name of the URDF's root link (of a body loaded from a URDF)."""
-        return self.client.getBodyInfo(self.uid)[0].decode()
-
-    def com_in_root(self) -> Pose:
-        """The base's frame (centre of mass, principal axes) in the root link's frame."""
-        info = self.client.getDynamicsInfo(self.uid, -1)
-        return tuple(info[3]), tuple(info[4])
-
     # --- links and joints ------------------------------------------------------------------------
 
     def joints(self) -> List[Joint]:

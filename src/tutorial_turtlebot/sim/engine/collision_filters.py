@@ -63,9 +63,26 @@ def forget_body(client: Client, body: int) -> None:
 
 def renew_contacts(client: Client) -> None:
     """Drop every contact of ``client``: each collider gets its filter again, in the order of
-    their first filters (the broadphase's entries then stand in the order of a new world)."""
+    their first filters (the broadphase's entries then stand in the order of a new world).
+
+    A static rigid body (world_bullet's static meshes and planes) keeps its entry: static
+    colliders never pair with each other (the world's mask leaves out the world's group), so
+    renewing the others drops its contacts too; and pybullet's restoreState no longer finds a
+    rigid body whose entry was renewed after the state was saved ("didn't find
+    bodyUniqueId"), where a multibody's link is found."""
     for (body, link), (group, mask) in (client.filters or {}).items():
-        client.setCollisionFilterGroupMask(body, link, group, mask)
+        if not _static_rigid(client, body, link):
+            client.setCollisionFilterGroupMask(body, link, group, mask)
+
+
+RIGID_BODY = 1     # pybullet's body type (getDynamicsInfo's 11th field) of a plain rigid body
+
+
+def _static_rigid(client: Client, body: int, link: int) -> bool:
+    """Whether (``body``, ``link``) is a plain rigid body (pybullet's maximal coordinates, not a
+    multibody's link) of mass 0."""
+    info = client.getDynamicsInfo(body, link)
+    return info[10] == RIGID_BODY and info[0] == 0.0
 
 
 def colliders(client: Client) -> Dict[Collider, Tuple[int, int]]:

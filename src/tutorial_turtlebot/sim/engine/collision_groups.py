@@ -1,5 +1,5 @@
 """The collision groups of the world's bodies and the surface every world body has. Plain
-numbers, shared by the engine's builders (world_bullet, movable_bodies, urdf_loader, robot_body).
+numbers, shared by the engine's builders (world_bullet, movable_bodies, robot_body).
 """
 
 # World bodies are in collision group 4. A laser that must see the world only casts rays with

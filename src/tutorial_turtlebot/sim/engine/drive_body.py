@@ -11,6 +11,8 @@ Gazebo's drives read the model's pose. The wheels' friction is the SDF's (their 
 """
 from typing import Mapping, Optional, Sequence, Tuple
 
+import numpy as np
+
 from . import collision_filters
 from .bodies import Body
 from .bullet import pybullet
@@ -60,10 +62,13 @@ class DriveBody:
         return body.joint_state(index)
 
     def mass_and_yaw_inertia(self) -> Tuple[float, float]:
-        """(kg of every link of the base's body, kg m^2 of the base about its z axis)."""
+        """(kg of every link of the base's body, kg m^2 of the base about the model frame's z
+        axis through its centre of mass: the base's frame is along its principal axes)."""
         base = self.base
         mass = sum(base.inertial(link).mass for link in range(-1, base.joint_count()))
-        return mass, base.inertial(-1).moments[2]
+        axes = np.array(pybullet.getMatrixFromQuaternion(self._model_in_base[1])).reshape(3, 3)
+        moments = np.array(base.inertial(-1).moments)
+        return mass, float(axes[:, 2] @ (moments * axes[:, 2]))
 
     # --- commands -------------------------------------------------------------------------------
 

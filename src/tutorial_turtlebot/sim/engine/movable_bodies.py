@@ -14,6 +14,7 @@ Joint limits, damping and friction (a velocity motor of that force holding it, a
 models' joints are held) are set as the file says; a ball joint is pybullet's spherical one.
 Units: metres, kilograms, kg m^2; poses ((x, y, z), (qx, qy, qz, qw)) in the world frame.
 """
+import tempfile
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -32,7 +33,7 @@ from ..files.meshes.mesh_file import load_mesh
 from ..files.meshes.mesh_types import Mesh, MeshPart
 from ..files.meshes.obj_writer import write_obj_parts
 from ..files import limits
-from ..files.model_tree import BodyLink, Tree, trees
+from ..files.model_tree import BodyLink, Tree, link_by_name, trees
 from ..files.world_types import Inertial, Joint, Link, Shape, World
 
 Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]
@@ -308,6 +309,35 @@ def _shape_arrays(shapes: List[Shape], to_com, client: Client, mesh_dir: str, vi
         else:
             add(pybullet.GEOM_SPHERE, pose, s.rgba, radius=s.size[0])
     return args
+
+
+def model_body(world: World, client: Client) -> int:
+    """The one body of the first model of ``world`` (a robot's, urdf_to_sdf): the tree of its
+    first link (a lone link: ``movable_body``; joined links: ``jointed_body``), its base
+    framed as ``model_base_frame`` says. Links of other trees (below a floating or planar URDF
+    joint) are not part of it."""
+    tree, links = _first_tree(world)
+    shapes: Dict[str, List[Shape]] = {}
+    for shape in world.shapes:
+        if shape.link in tree.links:
+            shapes.setdefault(shape.link, []).append(shape)
+    with tempfile.TemporaryDirectory(prefix="tutorial_turtlebot_meshes_") as mesh_dir:
+        if tree.single:
+            return movable_body(links[tree.root], shapes.get(tree.root, []), client, mesh_dir)
+        return jointed_body(tree, links, shapes, client, mesh_dir)
+
+
+def model_base_frame(world: World) -> Tuple[str, Pose]:
+    """(scoped name of the link at the base of ``model_body``'s body, world pose of the base's
+    frame as built: body_link_frames)."""
+    tree, links = _first_tree(world)
+    return tree.root, body_link_frames(tree, links)[0]
+
+
+def _first_tree(world: World) -> Tuple[Tree, Dict[str, Link]]:
+    """(the tree of the first model's first link, its links by scoped name)."""
+    model = world.model_specs[0]
+    return trees(model)[0], link_by_name(model)
 
 
 def movable_trees(world: World) -> Dict[str, Tree]:

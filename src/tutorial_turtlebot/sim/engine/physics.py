@@ -15,6 +15,7 @@ from .client import Client
 from .rendering import disable_egl, enable_egl
 from .body_pool import BodyPool
 from .world_bullet import WORLD_COLLISION_GROUP, build_world
+from ..files import limits
 from ..files.world_types import World
 from ...errors import UserError
 
@@ -54,9 +55,15 @@ class WorldPhysics:
         client.setTimeStep(time_step)
         client.setGravity(0, 0, -GRAVITY)
         # enableFileCaching 0: pybullet would keep every mesh file it ever read, for good (the
-        # files written here are new for each body: nothing would be read from that cache)
+        # files written here are new for each body: nothing would be read from that cache).
+        # solverResidualThreshold 0: the solver runs all its iterations, as Gazebo's ODE does
+        # at its default sor_pgs_rms_error_tol 0. Bullet's early stop is judged on a whole
+        # island and depends on the run's history in a way restoreState does not put back: a
+        # reset learning stage 4 stepped 1e-12 m off a new one after 400 steps, on the infinite
+        # ground plane (its solved contact forces differed from identical contacts).
         client.setPhysicsEngineParameter(numSolverIterations=solver_iterations,
-                                         enableFileCaching=0, deterministicOverlappingPairs=1)
+                                         enableFileCaching=0, deterministicOverlappingPairs=1,
+                                         solverResidualThreshold=0.0)
         # one line each: what the world's building could not draw as its files say (textures
         # halved for the texture budget, unreadable now); the node logs them with the world's
         self.warnings: List[str] = []
@@ -168,8 +175,9 @@ class WorldPhysics:
         both: Bullet's closest points between a sphere of PROBE_RADIUS at the point and each
         static collider of the world's collision group whose bounding box holds it, at a
         negative distance (the point inside or within PROBE_RADIUS of the collider). A box,
-        cylinder, sphere or a polyline's convex piece is solid; a static mesh is triangles only
-        (a point inside a closed mesh is in none); movable models and robots never count."""
+        cylinder, sphere or a polyline's convex piece is solid, and so is the whole side of an
+        infinite plane below its surface (a half-space, as Gazebo's); a static mesh is triangles
+        only (a point inside a closed mesh is in none); movable models and robots never count."""
         client = self.client
         filters = client.filters or {}
         probe = None
@@ -196,7 +204,8 @@ class WorldPhysics:
     def overlaps(self, body: int, min_depth: float) -> List[Tuple[int, int, float, float]]:
         """(body id, link index, depth m, top z m) of each collider that ``body`` penetrates by
         more than ``min_depth``, deepest first: Bullet's closest points between ``body`` and
-        every collider whose bounding box meets its own; top is the collider's bounding box's."""
+        every collider whose bounding box meets its own; top is the collider's bounding box's,
+        an infinite plane's its highest point over ``body``'s box (``_plane_top``)."""
         client = self.client
         boxes = [client.getAABB(body, link) for link in range(-1, client.getNumJoints(body))]
         low = np.min([box[0] for box in boxes], axis=0).tolist()
@@ -209,8 +218,25 @@ class WorldPhysics:
             depth = max((-point[8] for point in points), default=0.0)
             if depth > min_depth:
                 top = client.getAABB(uid, link)[1][2]
+                if top > limits.MAX_POSITION:    # unbounded: an infinite plane
+                    top = self._plane_top(uid, link, low, high)
                 found.append((uid, link, depth, top))
         return sorted(found, key=lambda overlap: -overlap[2])
+
+    def _plane_top(self, uid: int, link: int, low, high) -> float:
+        """The highest z (m) over the corners of the world box ``low``..``high`` (its x, y) of
+        the infinite plane (``uid``, ``link``): world_bullet builds a plane as a body whose x-y
+        plane is the surface; a vertical plane has no top there: the box's top."""
+        client = self.client
+        if link < 0:
+            (px, py, pz), orientation = client.getBasePositionAndOrientation(uid)
+        else:
+            (px, py, pz), orientation = client.getLinkState(uid, link)[4:6]
+        nx, ny, nz = pybullet.getMatrixFromQuaternion(orientation)[2::3]    # the body's z axis
+        if abs(nz) < 1e-9:
+            return float(high[2])
+        return float(max(pz - (nx * (x - px) + ny * (y - py)) / nz
+                         for x in (low[0], high[0]) for y in (low[1], high[1])))
 
     def close(self) -> None:
         """Disconnect the pybullet client."""

@@ -1,27 +1,33 @@
-"""One robot URDF loaded into a WorldPhysics: its pose, velocity, wheels and frames. Knows nothing
+"""One robot URDF built into a WorldPhysics: its pose, velocity, wheels and frames. Knows nothing
 of ROS.
 
+The robot's body is built as every model's is: its URDF converted into the SDF model Gazebo
+makes of it (files/urdf/urdf_to_sdf: fixed joints lumped, inertias merged as Gazebo merges
+them), whose links, joints and shapes movable_bodies builds (``model_body``: the base framed at
+its centre of mass along its principal axes of inertia; each wheel a true cylinder).
 ``RobotBody`` is built on a ``bodies.Body`` (``body``, a new one after ``rebuild``): the robot's
 base, joints and removal are the Body's; what is the robot's own is here: its collision group
 bit, its wheels' friction, motors and brake, and its root link's frames. A robot's reference
 frame is its root link (``base_footprint`` on a TurtleBot3: on the floor between the wheels, x
-forward). pybullet places a body by its centre of mass, so every pose here is converted to and
+forward). pybullet places a body by its base frame, so every pose here is converted to and
 from the root link. Units: m, s, rad, kg, N*m. Quaternions (x, y, z, w).
 """
 import hashlib
-import os
-from typing import Dict, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from . import collision_filters
 from .bodies import Body
 from .bullet import pybullet
+from ...errors import UserError
+from .movable_bodies import model_base_frame, model_body
 from ..kinematics import Pose
+from ..files.sdf.world_sdf import load_model_xml
 from ..files.urdf.urdf_file import RobotDescription
-from ..files.urdf.urdf_meshes import bullet_urdf_text
+from ..files.urdf.urdf_to_sdf import urdf_to_sdf
+from ..files.world_types import World
 from .physics import ROBOT_GROUPS, WorldPhysics
-from .urdf_loader import load_urdf
 from .collision_groups import ALL_COLLISION_GROUPS, WORLD_COLLISION_GROUP
 
 # Tyre on floor (pybullet multiplies the two surfaces' values; the floor's is 1): enough grip
@@ -61,10 +67,13 @@ class RobotBody:
         except Exception:
             physics.give_back_robot_bit(self.collision_bit)
             raise
-        self._com_in_footprint = self.body.com_in_root()
-        self._footprint_in_com = pybullet.invertTransform(*self._com_in_footprint)
-        self.wheels = self._wheel_indices(wheel_joints)
-        self._free = self._wheel_indices(free_wheels)
+        self._footprint_in_com = pybullet.invertTransform(*self.com_in_root)
+        try:
+            self.wheels = self._wheel_indices(wheel_joints)
+            self._free = self._wheel_indices(free_wheels)
+        except UserError:
+            self.remove()
+            raise
         self._gripping = self.wheels + self._free
         self._free_wheels()
         self._sides = tuple(wheel_sides) if wheel_sides is not None else (0, 1)
@@ -76,17 +85,24 @@ class RobotBody:
         self.reset_robot()
 
     def _load(self, description: Optional[RobotDescription] = None) -> int:
-        """Load the description's URDF (kept as text for rebuild), or again that text."""
+        """Build the description's body (its SDF model kept for rebuild), or again that
+        model's; a deleted robot's body of the same model is reused (body_pool)."""
         client = self.client
         if description is not None:
-            self._bullet_urdf = bullet_urdf_text(
-                description.root, os.path.dirname(os.path.abspath(description.path)))
-        pool = self.physics.body_pool   # a deleted robot of the same URDF is reused
+            # model: the World of the robot's SDF model; notes: what its conversion left out;
+            # root_link: the link at the base of the body; com_in_root: the base's frame in it
+            self.model, self.notes = robot_model(description)
+            root, base = model_base_frame(self.model)
+            self.root_link = root.split("::", 1)[1]
+            self.com_in_root: Pose = (tuple(base[0]), tuple(base[1]))
+            self._key = ("robot", hashlib.sha256(repr(
+                (self.model.model_specs, self.model.shapes)).encode("utf-8")).hexdigest())
+        pool = self.physics.body_pool
         parked = pool.take(self._pool_key())
         if parked:
             robot = parked[0]
         else:
-            robot = load_urdf(client, self._bullet_urdf)
+            robot = model_body(self.model, client)
             pool.remember([robot])
         for link in range(-1, client.getNumJoints(robot)):
             collision_filters.set_filter(client, robot, link, self.collision_bit,
@@ -103,14 +119,19 @@ class RobotBody:
         return self.body.uid
 
     def _pool_key(self) -> tuple:
-        """The BodyPool key of this robot's body: the digest of the URDF pybullet loaded."""
-        return ("robot", hashlib.sha256(self._bullet_urdf.encode("utf-8")).hexdigest())
+        """The BodyPool key of this robot's body: the digest of the model it was built from."""
+        return self._key
 
     def _wheel_indices(self, names: Sequence[str]) -> Tuple[int, ...]:
         client = self.client
-        by_name = {client.getJointInfo(self.robot, j)[1].decode(): j
-                   for j in range(client.getNumJoints(self.robot))}
-        self._joints: Dict[str, int] = by_name
+        by_name: Dict[str, int] = {}
+        for joint in self.body.joints():
+            by_name.setdefault(joint.name, joint.index)
+        self._joints = by_name
+        for name in names:
+            if name not in by_name:
+                raise UserError("%s: joint %r is not simulated: it moves a link without mass, "
+                                "which Gazebo leaves out" % (self.description.path, name))
         wheels = tuple(by_name[name] for name in names)
         for j in wheels:
             client.changeDynamics(self.robot, j, lateralFriction=WHEEL_FRICTION)
@@ -199,7 +220,7 @@ class RobotBody:
 
     def place(self, pose: Pose) -> None:
         """Put the root link at world ``pose``, at rest."""
-        self.body.set_pose(pybullet.multiplyTransforms(*pose, *self._com_in_footprint))
+        self.body.set_pose(pybullet.multiplyTransforms(*pose, *self.com_in_root))
         self.body.set_twist(((0, 0, 0), (0, 0, 0)))
 
     def rebuild(self) -> None:
@@ -270,11 +291,14 @@ class RobotBody:
         self.client.applyExternalTorque(self.robot, -1, tuple(torque), pybullet.WORLD_FRAME)
 
     def mass_and_yaw_inertia(self) -> Tuple[float, float]:
-        """(kg of every link, kg m^2 of the chassis about its z axis)."""
+        """(kg of every link, kg m^2 of the chassis about the root link's z axis through its
+        centre of mass)."""
         client = self.client
         mass = sum(client.getDynamicsInfo(self.robot, link)[0]
                    for link in range(-1, client.getNumJoints(self.robot)))
-        return mass, client.getDynamicsInfo(self.robot, -1)[2][2]
+        axes = np.array(pybullet.getMatrixFromQuaternion(self.com_in_root[1])).reshape(3, 3)
+        moments = np.array(client.getDynamicsInfo(self.robot, -1)[2])
+        return mass, float(axes[2] @ (moments * axes[2]))
 
     def frame_in_footprint(self, frame: str) -> np.ndarray:
         """4x4 pose of a URDF frame (base_scan, imu_link, camera...) in the root link."""
@@ -292,3 +316,13 @@ class RobotBody:
         pos, orn = self.footprint_pose()
         rot = np.array(pybullet.getMatrixFromQuaternion(orn)).reshape(3, 3)
         return np.array(pos) + rot @ in_root[:3, 3], rot @ in_root[:3, :3]
+
+
+def robot_model(description: RobotDescription) -> Tuple[World, List[str]]:
+    """(the World of the one SDF model Gazebo makes of a robot's URDF (urdf_to_sdf), named
+    after the robot, its root link at the origin; the conversion's warning lines). A lumped
+    link's <sensor> pose is not among them: a robot's sensors are read from its URDF
+    (robot_plugins), each at its own link and pose."""
+    sdf, notes = urdf_to_sdf(description)
+    world = load_model_xml(sdf, description.path, description.name)
+    return world, [note for note in notes if "<sensor>" not in note]

@@ -4,7 +4,8 @@ Static models: every collision shape becomes one fixed body that also carries it
 (same geometry and pose), so contacts, rays and cameras all see it; a collision without a twin
 is not drawn (cameras see visuals only, as in Gazebo: a collision box around a textured mesh
 would hide it); a visual without a collision twin becomes a body that cameras see and rays and
-contacts pass through. A static mesh collides with its triangles themselves.
+contacts pass through. A static mesh collides with its triangles themselves; a plane as an
+infinite plane (a half-space, as Gazebo's ODE plane), drawn at its <size>.
 Models that are not ``<static>``: each tree of joined links is one movable body, a lone link
 one rigid body (movable_bodies: mass, inertia, friction; a mesh collides as its convex hull).
 Visuals are drawn from files (visual_files): mesh parts in their SDF ``<material>`` colour or
@@ -45,11 +46,11 @@ from ..files.world_types import Shape, World
 REEXPORTED = (ALL_COLLISION_GROUPS, MOVABLE_KINDS, link_com_pose)
 
 
-# A plane is a thin box with its top face on the plane (pybullet's EGL renderer crashed on
-# GEOM_PLANE). Its collision box is at least PLANE_MIN_EXTENT square, as Gazebo's plane collision
-# is unbounded; its visual keeps the SDF size.
-PLANE_THICKNESS = 0.05      # m
-PLANE_MIN_EXTENT = 100.0    # m
+# A plane collides as Bullet's infinite plane (GEOM_PLANE, a half-space: its surface through
+# the shape's origin, normal along the shape's z, which world_sdf turned onto the SDF <normal>),
+# as Gazebo's ODE plane does. It is drawn as a thin box of its <size>, its top face on the
+# plane (pybullet's EGL renderer crashed on a GEOM_PLANE visual).
+PLANE_THICKNESS = 0.05      # m: drawn
 
 Point = Tuple[float, float]
 
@@ -190,15 +191,17 @@ def _body(shape: Shape, client: Client, mesh_dir: str, collide: bool) -> int:
 
 def _static_rigid(shape: Shape, collide: bool, links: list) -> bool:
     """Whether a fixed body is made a plain static rigid body (pybullet's maximal coordinates)
-    rather than a multibody, and asleep: a static mesh collision of one piece, and every visual
-    of one piece without a collision. Bullet updates every multibody every step, fixed or not
-    and colliding or not, and the bounds of every static body that is awake: the 171 bodies of
-    bench/mesh_world.py cost 2.7 times turtlebot3_world's physics CPU per sim second as
-    multibodies, 1.9 times as static rigid bodies, 1.35 times asleep, and the same as
+    rather than a multibody, and asleep: a static mesh collision of one piece, a plane, and
+    every visual of one piece without a collision. Bullet updates every multibody every step,
+    fixed or not and colliding or not, and the bounds of every static body that is awake: the
+    171 bodies of bench/mesh_world.py cost 2.7 times turtlebot3_world's physics CPU per sim
+    second as multibodies, 1.9 times as static rigid bodies, 1.35 times asleep, and the same as
     turtlebot3_world once its 41 visual-only bodies were asleep too (a body still collides
-    asleep and moves when set). Colliding primitive shapes stay multibodies (turtlebot3_world's
-    contacts, and so its robot's path, stay as they were)."""
-    return not links and (not collide or shape.kind == "mesh")
+    asleep and moves when set). A plane as a fixed multibody took NaN into its own pose from a
+    robot whose state went NaN on it, and the robot then fell through the world; the solver
+    never moves a static rigid body. Other colliding primitive shapes stay multibodies
+    (turtlebot3_world's walls, and so its robot's path, stay as they were)."""
+    return not links and (not collide or shape.kind in ("mesh", "plane"))
 
 
 def _pieces(shape: Shape, client: Client, mesh_dir: str, collide: bool,
@@ -209,6 +212,8 @@ def _pieces(shape: Shape, client: Client, mesh_dir: str, collide: bool,
     Box and plane visuals are mesh files too (``mesh_visual``): pybullet's EGL renderer
     tessellates a GEOM_BOX through a convex hull that flattens a box about 800 times wider than
     thick (the 100 m ground, 5 cm thick) into its middle plane, with one triangle missing.
+    A plane collides as an infinite plane (its <size> only drawn); only static shapes come
+    here: a plane in a model that is not <static> is refused (movable_bodies, spawn_request).
     """
     rgba = shape.rgba
     if shape.kind == "mesh":
@@ -218,18 +223,17 @@ def _pieces(shape: Shape, client: Client, mesh_dir: str, collide: bool,
         return [_prism(polygon, shape.size[0], rgba, client, mesh_dir, collide, draw)
                 for polygon in polygons]
     if shape.kind in ("box", "plane"):
+        hx, hy = shape.size[0] / 2, shape.size[1] / 2
         if shape.kind == "box":
-            half = [s / 2 for s in shape.size]
-            col_args = {"halfExtents": half}
-            z_range = (-half[2], half[2])
-        else:
-            half = [s / 2 for s in shape.size] + [PLANE_THICKNESS / 2]
-            col_args = {"halfExtents": [max(s, PLANE_MIN_EXTENT) / 2 for s in shape.size]
-                        + [half[2]], "collisionFramePosition": (0, 0, -half[2])}
+            z_range = (-shape.size[2] / 2, shape.size[2] / 2)
+            col = (bullet_shapes.collision_shape(client, pybullet.GEOM_BOX,
+                                                 halfExtents=[hx, hy, z_range[1]])
+                   if collide else -1)
+        else:     # infinite: the <size> only bounds what is drawn
             z_range = (-PLANE_THICKNESS, 0.0)
-        col = (bullet_shapes.collision_shape(client, pybullet.GEOM_BOX, **col_args)
-               if collide else -1)
-        hx, hy = half[0], half[1]
+            col = (bullet_shapes.collision_shape(client, pybullet.GEOM_PLANE,
+                                                 planeNormal=(0.0, 0.0, 1.0))
+                   if collide else -1)
         if not draw:
             return [(col, -1)]
         if shape.texture is not None:

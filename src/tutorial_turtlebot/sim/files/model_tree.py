@@ -8,11 +8,12 @@ Plain data, no ROS, no pybullet (engine.movable_bodies builds it, world.world_mo
   child. A joint from ``world`` anchors its child: a fixed one fixes the tree's base, another
   one moves it about a fixed, massless base at the joint.
 - ``body_links`` lists a tree's links in the engine's order: index -1 the base, then one entry
-  per pybullet joint, each after its parent. A universal or revolute2 joint is two revolute
-  joints through a light link of its own (``link`` None); a screw or gearbox joint is held
-  fixed (one warning where it is read).
+  per pybullet joint, depth first (each link's children in joint order): the order in which
+  pybullet numbers the links of a multibody, whatever the order they are given in. A universal
+  or revolute2 joint is two revolute joints through a light link of its own (``link`` None); a
+  screw or gearbox joint is held fixed (one warning where it is read).
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Dict, List, Optional, Sequence, Tuple
 
 from .world_types import WORLD_LINK, Joint, Link, Model
@@ -104,7 +105,7 @@ class Tree:
             index[self.root] = -1
         for joint in self.joints:
             index[joint.child] = self._add(out, joint, index[joint.parent])
-        return out
+        return _depth_first(out)
 
     @staticmethod
     def _add(out: List[BodyLink], joint: Joint, parent: int) -> int:
@@ -116,6 +117,24 @@ class Tree:
         else:
             out.append(BodyLink(joint.child, joint, 1, parent))
         return len(out) - 2
+
+
+def _depth_first(links: List[BodyLink]) -> List[BodyLink]:
+    """``links`` (the base, then each link after its parent) depth first, each link's children
+    in their order in ``links``, parents renumbered."""
+    children: Dict[int, List[int]] = {}
+    for index, entry in enumerate(links[1:]):
+        children.setdefault(entry.parent, []).append(index)
+    order: List[int] = []
+    renumbered = {-1: -1}
+    todo = children.get(-1, [])[::-1]
+    while todo:
+        index = todo.pop()
+        renumbered[index] = len(order)
+        order.append(index)
+        todo.extend(children.get(index, [])[::-1])
+    return [links[0]] + [replace(links[index + 1], parent=renumbered[links[index + 1].parent])
+                         for index in order]
 
 
 def trees(model: Model) -> List[Tree]:

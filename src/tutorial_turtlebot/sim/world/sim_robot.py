@@ -205,6 +205,7 @@ class SimRobot:
                                   (drive.left_joint, drive.right_joint) if drive else (),
                                   drive.wheel_torque if drive else 0.0)))
         self.warnings += texture_warnings(description)   # textures drawn as plain colours
+        self.warnings += self.body.notes   # what Gazebo's URDF conversion left out
         try:   # a robot that cannot be completed leaves no body behind
             self._set_up(physics, now_ns, seed)
         except BaseException:

@@ -206,7 +206,7 @@ class Simulation:
             robot = SimRobot(self.physics, name, namespace, description, pose, options,
                              self.time_ns, seed=self.config.seed + len(self.robots))
         try:
-            model = urdf_model(RobotModel, name, robot.body.body,
+            model = urdf_model(RobotModel, name, robot.body,
                                collisions=description.collision_names(), robot_body=robot.body)
             overlap = overlap_warning(self.physics, robot.body.robot, description, pose,
                                       model_of_body(self.models))

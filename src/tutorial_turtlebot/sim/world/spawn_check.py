@@ -9,32 +9,32 @@ with one warning (``overlap_warning``).
 **The landing rule.** The robot is measured by its URDF's collision geometry, turned as asked:
 its top (m above its root link, base_footprint on a TurtleBot3) and its reach (m from the root's
 vertical axis, in plan). Rays are cast straight down (pybullet's, on the world's collision
-geometry as it is: boxes, cylinders, polylines, meshes open or closed) at the root's (x, y) and
-at points on two circles about it (the reach, and half of it), from the robot's top at the
-requested pose down (on to BURIED_DEPTH below the requested z). The highest static surface they
-meet is the floor under the robot: if it lies more than LIFT_TOLERANCE above the requested z,
-the root link is put on it (same x, y and orientation); otherwise the pose is kept as given (a
-robot above the floor falls, as in Gazebo). So a surface counts only if it is below the robot's
-own top at the requested pose: a table top, a shelf, anything above the robot's head is never
-climbed onto (the robot stands under it). Movable models and other robots are no floor (the
-rays pass them by).
+geometry as it is: boxes, cylinders, planes, polylines, meshes open or closed) at the root's
+(x, y) and at points on two circles about it (the reach, and half of it), from the robot's top
+at the requested pose down (on to BURIED_DEPTH below the requested z). The highest static
+surface they meet is the floor under the robot: if it lies more than LIFT_TOLERANCE above the
+requested z, the root link is put on it (same x, y and orientation); otherwise the pose is kept
+as given (a robot above the floor falls, as in Gazebo). So a surface counts only if it is below
+the robot's own top at the requested pose: a table top, a shelf, anything above the robot's head
+is never climbed onto (the robot stands under it). Movable models and other robots are no floor
+(the rays pass them by).
 
 **Inside a solid floor.** A floor higher than the robot itself (a 0.19 m floor box under a
 Waffle, 0.141 m tall, asked for z 0) holds the robot's whole body, and rays cast from inside a
 solid meet none of its faces. Where the rays above found no floor to lift onto, the robot's
-vertical span is probed at each footprint point: from SOLID_INSET above its root to
-SOLID_INSET below its top, both ends must lie inside one and the same static solid collider
-(``solids_at``: a box, cylinder, sphere, or a polyline's convex piece), and so, the solid being
-convex, the whole span between. Then rays cast down from BURIED_DEPTH above the requested z to
-the probed top meet the solid's top in every column, the lowest surface of each; the root link
-is put on the highest of them. Either one solid holds every column, or the tops differ by at
-most TILE_STEP (a floor of tiles): a footprint held by a floor and a wall beside it is an
-overlap. A solid that holds the whole footprint is stood on however high (a pillar wider than
-the robot, a wall thick enough). Under a table top, over the robot's head or lower than its
-top (a low bench), the root's end is in open space; a stage edge or a table leg holds only
-some of the footprint's columns: none is lifted, and the overlap warning below proposes the
-top as z_pos. A static mesh is triangles only (a closed one could as well be a
-room as a solid), so a robot inside one is never taken as buried.
+vertical span is probed at each footprint point: from SOLID_INSET above its root to SOLID_INSET
+below its top, both ends must lie inside one and the same static solid collider (``solids_at``:
+a box, cylinder, sphere, a polyline's convex piece, or the side of a plane below its surface),
+and so, the solid being convex, the whole span between. Then rays cast down from BURIED_DEPTH
+above the requested z to the probed top meet the solid's top in every column, the lowest surface
+of each; the root link is put on the highest of them. Either one solid holds every column, or
+the tops differ by at most TILE_STEP (a floor of tiles): a footprint held by a floor and a wall
+beside it is an overlap. A solid that holds the whole footprint is stood on however high (a
+pillar wider than the robot, a wall thick enough). Under a table top, over the robot's head or
+lower than its top (a low bench), the root's end is in open space; a stage edge or a table leg
+holds only some of the footprint's columns: none is lifted, and the overlap warning below
+proposes the top as z_pos. A static mesh is triangles only (a closed one could as well be a room
+as a solid), so a robot inside one is never taken as buried.
 
 **Under the ground.** When the rays meet nothing at all from the robot's top down to
 BURIED_DEPTH below the requested z, the robot has no floor below it: it stands under a world's

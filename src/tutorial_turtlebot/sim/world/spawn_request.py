@@ -37,13 +37,12 @@ from ..files import limits
 from ..files import xml_reader
 from ..kinematics import xyz_rpy_from_pose
 from ..files.urdf.urdf_file import RobotDescription, read_urdf_element
-from ..files.urdf.urdf_meshes import absolute_meshes, bullet_urdf_text, mesh_paths
 from ..files.urdf.urdf_to_sdf import urdf_to_sdf
 from ..engine.world_bullet import MOVABLE_KINDS
 from .world_models import spawn_failure, spawn_refusal
 from ..files.sdf.world_sdf import load_model_xml
 from ..files.world_types import World
-from ..files.xml_reader import Element
+from ..files.xml_reader import Element, element
 
 MAX_XML_BYTES = 1_000_000
 # What one spawn may cost the loop (it builds the bodies between two steps, while physics,
@@ -83,17 +82,19 @@ def _check_size(xml: str) -> None:
 
 
 def parse_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY,
-                kind: str = "sdf") -> SpawnRequest:
+                kind: str = "sdf", robot_namespace: str = "") -> SpawnRequest:
     """Check and parse a spawn of ``xml`` as model ``name`` at world ``pose``. ``kind`` is the
     service called: "sdf" takes SDF or URDF (as Gazebo's spawn_sdf_model does), "urdf" only
-    URDF. A robot's errors name it "model_xml of <name>", others "model_xml". The request
-    carries the text's digest (the key of its bodies once deleted)."""
-    request = _parse(name, xml, pose, kind)
+    URDF. A robot's errors name it "model_xml of <name>", others "model_xml". An SDF model's
+    plugins without a <robotNamespace> get ``robot_namespace`` (add_robot_namespace). The
+    request carries the text's digest (the key of its bodies once deleted)."""
+    request = _parse(name, xml, pose, kind, robot_namespace)
     request.digest = hashlib.sha256(xml.encode("utf-8", "surrogatepass")).hexdigest()
     return request
 
 
-def _parse(name: str, xml: str, pose: rf.Pose, kind: str) -> SpawnRequest:
+def _parse(name: str, xml: str, pose: rf.Pose, kind: str,
+           robot_namespace: str = "") -> SpawnRequest:
     _check_size(xml)
     with spawn_refusal():
         root = xml_reader.parse(xml, "model_xml")
@@ -105,7 +106,21 @@ def _parse(name: str, xml: str, pose: rf.Pose, kind: str) -> SpawnRequest:
     if root.tag not in ("sdf", "gazebo"):
         raise spawn_failure("model_xml: the root element is <%s>: expected <sdf> or "
                             "<robot>" % root.tag)
+    add_robot_namespace(root, robot_namespace)
     return SpawnRequest(name, world=_sdf_world(root, name, pose))
+
+
+def add_robot_namespace(root: Element, namespace: str) -> None:
+    """A spawn's robot_namespace given to the SDF it brings, as gazebo_ros' spawn service gives
+    it: every <plugin> anywhere under ``root`` that has no <robotNamespace> gets one of
+    ``namespace`` (none when it is ""). A URDF robot's plugins take it as the robot's."""
+    if not namespace:
+        return
+    for plugin in root.iter("plugin"):
+        if plugin.find("robotNamespace") is None:
+            child = element("robotNamespace", {}, plugin.line)
+            child.text = namespace
+            plugin.append(child)
 
 
 def _sdf_world(root: Element, name: str, pose: rf.Pose) -> World:
@@ -122,15 +137,15 @@ def _sdf_world(root: Element, name: str, pose: rf.Pose) -> World:
 
 
 def prepare_spawn(name: str, xml: str, pose: rf.Pose = rf.IDENTITY, kind: str = "sdf",
-                  seconds: float = PREPARE_SECONDS) -> SpawnRequest:
+                  seconds: float = PREPARE_SECONDS, robot_namespace: str = "") -> SpawnRequest:
     """Everything of a spawn but building it, for any thread: parse_spawn, its cost held to the
-    MAX_SPAWN_* budgets, and every mesh it names read and converted once (mesh_file's and
-    urdf_meshes' caches), so that building it in the loop does pybullet calls only. RequestError
+    MAX_SPAWN_* budgets, and every mesh it names read and converted once (mesh_file's
+    caches), so that building it in the loop does little more than pybullet calls. RequestError
     (one line) over a budget, or when the reading took more than ``seconds``: nothing is built
     then."""
     with _PREPARE_LOCK:
         deadline = time.monotonic() + seconds
-        request = parse_spawn(name, xml, pose, kind)
+        request = parse_spawn(name, xml, pose, kind, robot_namespace)
         _check_time(deadline, seconds)
         if request.world is not None:
             _prepare_world(request.world, deadline, seconds)
@@ -177,7 +192,7 @@ def _prepare_world(world: World, deadline: float, seconds: float) -> None:
 
 
 def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> None:
-    """A robot's budgets, and its meshes converted for pybullet."""
+    """A robot's budgets, its meshes read (mesh_file keeps them for the build)."""
     from ..files.urdf.urdf_meshes import mesh_triangles
     description = request.description
     shapes = sum(len(link.visuals) + len(link.collisions)
@@ -191,10 +206,6 @@ def _prepare_urdf(request: SpawnRequest, deadline: float, seconds: float) -> Non
         if hull_vertices > MAX_MOVABLE_MESH_VERTICES:
             raise _over("vertices of a collision mesh (it collides as their hull)",
                         hull_vertices, MAX_MOVABLE_MESH_VERTICES)
-        _check_time(deadline, seconds)
-        # the conversions pybullet's copy needs, done now: building it later finds them made
-        bullet_urdf_text(absolute_meshes(description.root, mesh_paths(description)),
-                         os.getcwd())
     _check_time(deadline, seconds)
 
 

@@ -272,7 +272,7 @@ class RobotModel(WorldModel):
 
     def _built_again(self):
         self.robot_body.rebuild()
-        parts, links, _ = urdf_parts(self.robot_body.body)
+        parts, links, _ = urdf_parts(self.robot_body)
         return parts, links
 
 
@@ -412,12 +412,12 @@ def _jointed_links(spec, link_body: Dict[str, int]) -> Dict[str, Tuple[int, int,
     return out
 
 
-def urdf_parts(body: Body) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
-    """(parts, links, joint names) of a robot's body loaded from a URDF: the model frame is its
-    root link's frame; links are the root and every jointed link (fixed links merged, as
-    Gazebo lumps them)."""
-    com_in_root = body.com_in_root()
-    links = [LinkPart(body.root_link(), body=body, in_body=rf.inverse(com_in_root))]
+def urdf_parts(robot) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
+    """(parts, links, joint names) of a robot's body (engine.robot_body.RobotBody: built from
+    the SDF model of its URDF): the model frame is its root link's frame; links are the root
+    and every jointed link (fixed links merged, as Gazebo lumps them)."""
+    body, com_in_root = robot.body, robot.com_in_root
+    links = [LinkPart(robot.root_link, body=body, in_body=rf.inverse(com_in_root))]
     joints = []
     for joint in body.joints():
         links.append(LinkPart(joint.child_link, body=body, index=joint.index))
@@ -425,12 +425,12 @@ def urdf_parts(body: Body) -> Tuple[List[BodyPart], List[LinkPart], List[str]]:
     return [BodyPart(body, com_in_root, movable=True)], links, joints
 
 
-def urdf_model(kind, name: str, body: Body, spawn_pose: Optional[Pose] = None,
+def urdf_model(kind, name: str, robot, spawn_pose: Optional[Pose] = None,
                collisions: Optional[Dict[str, List[str]]] = None, **fields) -> WorldModel:
-    """A ``kind`` (RobotModel) of a body loaded from a URDF, at ``spawn_pose`` (None: where the
-    body is now); ``collisions``: the URDF's RobotDescription.collision_names(), the model's
-    geoms in link order; ``fields``: the kind's own (robot_body)."""
-    parts, links, joints = urdf_parts(body)
+    """A ``kind`` (RobotModel) of a robot's body (a RobotBody), at ``spawn_pose`` (None: where
+    the body is now); ``collisions``: the URDF's RobotDescription.collision_names(), the
+    model's geoms in link order; ``fields``: the kind's own (robot_body)."""
+    parts, links, joints = urdf_parts(robot)
     geoms = [geom for link in links for geom in (collisions or {}).get(link.name, ())]
     model = kind(name, False, parts, links, spawn_pose or rf.IDENTITY, joints=joints,
                  geoms=geoms, **fields)

@@ -4,14 +4,11 @@ three steps (spawn_pose, prepare_spawn, spawn_prepared), and removed; a deleted 
 are parked for the next spawn of the same text (body_pool.BodyPool: pybullet frees little of a
 removed body)."""
 import os
-import tempfile
-from dataclasses import replace
 from typing import List
 
 from ...errors import RequestError
 from ..engine.bullet_shapes import ShapeBudgetError
 from ..engine.world_bullet import build_world, place_world_bodies, reused_world_bodies
-from ..files.urdf.urdf_meshes import absolute_meshes, mesh_paths, urdf_text
 from . import reference_frames as rf
 from .reference_frames import Pose
 from .request_checks import check_names
@@ -34,7 +31,8 @@ class SpawnRequests:
         The three steps at once: the world API runs the middle one outside the loop. Returns
         the building's warning lines (spawn_prepared)."""
         pose = self.spawn_pose(name, pose, reference, robot_namespace)
-        return self.spawn_prepared(prepare_spawn(name, xml, pose, kind), pose, robot_namespace)
+        request = prepare_spawn(name, xml, pose, kind, robot_namespace=robot_namespace)
+        return self.spawn_prepared(request, pose, robot_namespace)
 
     def spawn_pose(self, name: str, pose: Pose, reference: str = "",
                    robot_namespace: str = "") -> Pose:
@@ -96,15 +94,8 @@ class SpawnRequests:
 
     def _add_robot(self, request: SpawnRequest, pose: Pose, namespace: str) -> None:
         """A robot with its URDF's plugins (read and checked by parse_spawn, before anything
-        is built), written out with each mesh filename the absolute path of its file."""
-        description = request.description
-        fd, path = tempfile.mkstemp(suffix=".urdf", prefix="tutorial_turtlebot_robot_")
-        try:
-            with os.fdopen(fd, "w") as f:
-                f.write(urdf_text(absolute_meshes(description.root, mesh_paths(description))))
-            self.sim.add_robot(request.name, namespace, replace(description, path=path), pose)
-        finally:
-            os.unlink(path)
+        is built; its meshes found then, each by the absolute path of its file)."""
+        self.sim.add_robot(request.name, namespace, request.description, pose)
 
     @staticmethod
     def _pool_key(request: SpawnRequest) -> tuple:

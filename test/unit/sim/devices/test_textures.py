@@ -16,7 +16,6 @@ from tutorial_turtlebot.sim.files.meshes import obj_writer, texture_images
 from tutorial_turtlebot.sim.engine.rendering import CameraRenderer
 from tutorial_turtlebot.sim.files.meshes.mesh_file import cache_clear, load_mesh
 from tutorial_turtlebot.sim.files.meshes.obj_writer import write_obj_parts
-from tutorial_turtlebot.sim.files.urdf import urdf_meshes
 from tutorial_turtlebot.sim.files.plugins.robot_plugin_types import CameraSpec
 
 from texture_fixtures import (QUADRANTS, camera_sim, cube, pixel, png_bytes, quadrant_texture,
@@ -319,30 +318,31 @@ def test_write_obj_parts_writes_uvs_and_a_copy_of_the_texture(tmp_path):
 
 
 def test_a_urdf_mesh_is_drawn_textured(tmp_path, renderer):
-    """urdf_meshes: a URDF's textured mesh visual is textured in pybullet's copy, and a
-    visual with a URDF <material> colour is drawn in that colour."""
-    from xml.etree import ElementTree
+    """A robot's textured mesh visual is drawn textured (its body built as every model's:
+    engine.robot_body), the builder telling the renderer; a URDF <material> colour does not
+    change it (Gazebo 11's conversion drops it: the file's own colours are drawn)."""
+    from tutorial_turtlebot.sim.engine.movable_bodies import model_body
+    from tutorial_turtlebot.sim.engine.robot_body import robot_model
+    from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf
     if renderer == "egl" and not rendering.egl_available():
         pytest.skip("EGL does not render on this machine")
     write_textured_obj(tmp_path)
-    urdf = """<robot name="r"><link name="a">
+    (tmp_path / "r.urdf").write_text("""<robot name="r"><link name="a">
       <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>\
 </inertial>
       <visual><origin xyz="0 0.4 0"/><geometry><mesh filename="box.obj" scale="0.6 0.6 0.6"/>\
 </geometry></visual>
       <visual><origin xyz="0 -0.4 0"/><geometry><mesh filename="box.obj" scale="0.6 0.6 0.6"/>\
 </geometry>
-        <material name="m"><color rgba="1 0 1 1"/></material></visual></link></robot>"""
-    text = urdf_meshes.bullet_urdf_text(ElementTree.fromstring(urdf), str(tmp_path))
-    assert urdf_meshes.textured_urdf(text)
-    (tmp_path / "r.urdf").write_text(text)
+        <material name="m"><color rgba="1 0 1 1"/></material></visual></link></robot>""")
     client = Client.connect()
     try:
         if renderer == "egl":
             assert rendering.enable_egl(client)
-        client.loadURDF(str(tmp_path / "r.urdf"), basePosition=(CUBE_X + 0.3, 0, 0.3),
-                        useFixedBase=True)
-        rendering.note_textures(client)
+        assert not client.textured
+        body = model_body(robot_model(read_urdf(str(tmp_path / "r.urdf")))[0], client)
+        assert client.textured
+        client.resetBasePositionAndOrientation(body, (CUBE_X + 0.3, 0, 0.3), (0, 0, 0, 1))
         spec = CameraSpec(width=320, height=240, hfov=1.085595, near=0.03, far=100.0, rate=30.0)
         view = CameraRenderer(client, spec, use_egl=renderer == "egl")
         rotation = np.array([[0, 0, 1], [-1, 0, 0], [0, -1, 0]], dtype=float)  # optical, +x
@@ -357,15 +357,16 @@ def test_a_urdf_mesh_is_drawn_textured(tmp_path, renderer):
                 def camera_pose():
                     return position, rotation
         assert_textured(Fake, rgb, centre_y=0.4)
-        assert looks(face_colour(Fake, rgb, -0.4, 0.3), (255, 0, 255))
+        assert_textured(Fake, rgb, centre_y=-0.4)
+        assert not looks(face_colour(Fake, rgb, -0.4, 0.3), (255, 0, 255))
     finally:
         rendering.disable_egl(client)
         client.disconnect()
-        urdf_meshes.cache_clear()
 
 
 def test_a_urdf_robot_names_its_missing_texture_in_one_warning(tmp_path):
     from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf
+    from tutorial_turtlebot.sim.files.urdf.urdf_meshes import texture_warnings
     write_textured_obj(tmp_path, texture="gone.png", kd="1 0 0", write_texture=False)
     (tmp_path / "r.urdf").write_text("""<robot name="r"><link name="a">
       <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>\
@@ -373,7 +374,7 @@ def test_a_urdf_robot_names_its_missing_texture_in_one_warning(tmp_path):
       <visual><geometry><mesh filename="box.obj"/></geometry></visual>
       <visual><origin xyz="1 0 0"/><geometry><mesh filename="box.obj"/></geometry></visual>
       </link></robot>""")
-    [line] = urdf_meshes.texture_warnings(read_urdf(str(tmp_path / "r.urdf")))
+    [line] = texture_warnings(read_urdf(str(tmp_path / "r.urdf")))
     assert line.startswith("box.obj: texture gone.png not drawn (found nowhere")
 
 

@@ -1,6 +1,7 @@
 """Body (engine/bodies.py), the handle of one pybullet body: its pose and twist, joints, link
 frames, masses, and finite(). Each method is checked against known values of a small URDF of
-its own and against pybullet's own answers. No ROS master."""
+its own (built as a robot's body is: unit_helpers.urdf_body) and against pybullet's own
+answers. No ROS master."""
 import math
 
 import pybullet
@@ -8,7 +9,7 @@ import pytest
 
 from tutorial_turtlebot.sim.engine.bodies import Body, Inertial, Joint
 from tutorial_turtlebot.sim.engine.client import Client
-from tutorial_turtlebot.sim.engine.urdf_loader import load_urdf
+from unit_helpers import urdf_body
 
 # A 2 kg base (its centre of mass 0.1 m ahead of its frame) with an arm on a revolute joint about
 # y (damping 0.3) and a slider on a prismatic joint along x; the three inertias are diagonal.
@@ -41,9 +42,8 @@ IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 
 @pytest.fixture
-def arm(client, tmp_path):
-    (tmp_path / "arm.urdf").write_text(ARM)
-    return Body(client, load_urdf(client, (tmp_path / "arm.urdf").read_text()))
+def arm(client):
+    return Body(client, urdf_body(client, ARM))
 
 
 def about_y(angle):
@@ -60,11 +60,8 @@ def test_equal_handles_name_the_same_body():
     assert repr(Body(c, 5)) == "Body(2, 5)"
 
 
-def test_root_link_and_the_base_frame(arm):
-    assert arm.root_link() == "base"
+def test_the_base_frame_is_the_centre_of_mass(arm):
     # The base's frame is its centre of mass: 0.1 m ahead of the root link, axes unturned.
-    pos, orn = arm.com_in_root()
-    assert pos == pytest.approx((0.1, 0.0, 0.0)) and orn == pytest.approx(IDENTITY)
     pos, orn = arm.pose()
     assert pos == pytest.approx((0.1, 0.0, 0.0)) and orn == pytest.approx(IDENTITY)
 
@@ -182,7 +179,7 @@ def test_finite_is_false_after_a_nan(arm, poison):
 
 
 def test_remove(client, arm):
-    other = Body(client, load_urdf(client, ARM))
+    other = Body(client, urdf_body(client, ARM))
     assert pybullet.getNumBodies(physicsClientId=client) == 2
     arm.remove()
     assert pybullet.getNumBodies(physicsClientId=client) == 1

@@ -4,7 +4,7 @@ put back as built, and forgotten with the body. No ROS master."""
 import pytest
 
 from tutorial_turtlebot.sim.engine.bodies import NO_STOP, Body
-from tutorial_turtlebot.sim.engine.urdf_loader import load_urdf
+from unit_helpers import urdf_body
 
 # A base too heavy to move (1000 kg, 1000 kg m^2) with a rod on a revolute joint about y:
 # 0.5 kg, its centre 0.2 m up the rod, 0.005 kg m^2 about it, so 0.005 + 0.5 x 0.2^2 =
@@ -24,7 +24,7 @@ ROD = """<robot name="rod"><link name="base"><inertial><mass value="1000"/>
 
 @pytest.fixture
 def rod(client):
-    return Body(client, load_urdf(client, ROD))
+    return Body(client, urdf_body(client, ROD))
 
 
 def test_as_built_the_joints_read_their_urdf(rod):

@@ -241,3 +241,28 @@ def test_a_jointed_link_swings_with_the_files_inertia_not_its_shapes(tmp_path):
     period = float(np.mean(np.diff(upward_crossings(np.array(ts), np.array(xs)))))
     expected = 2 * math.pi * math.sqrt((1.0 + 0.5) / 9.8)
     assert abs(period - expected) / expected < 0.02
+
+
+def test_each_joint_moves_the_link_it_names_in_a_branching_tree(client):
+    """A joint found by name (Body.joints, the world API, a drive's wheels) is the one pybullet
+    built for it: each link's frame is where its joint puts it, in a tree whose links pybullet
+    numbers depth first (a tricycle: a fork and its wheel ahead, two wheels behind)."""
+    from tutorial_turtlebot.sim.engine.bodies import Body
+    from unit_helpers import urdf_body
+
+    link = ('<link name="%s"><inertial><mass value="0.3"/><inertia ixx="0.001" iyy="0.001" '
+            'izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>')
+    joint = ('<joint name="%s" type="continuous"><parent link="%s"/><child link="%s"/>'
+             '<origin xyz="%s"/><axis xyz="0 1 0"/></joint>')
+    urdf = "<robot name='tri'>%s</robot>" % "".join(
+        [link % name for name in ("base", "fork", "front", "left", "right")]
+        + [joint % ("fork_steer", "base", "fork", "0.25 0 0.05"),
+           joint % ("left_wheel", "base", "left", "-0.15 0.2 0.05"),
+           joint % ("right_wheel", "base", "right", "-0.15 -0.2 0.05"),
+           joint % ("spin", "fork", "front", "0 0 -0.01")])
+    body = Body(client, urdf_body(client, urdf))
+    where = {j.name: tuple(np.round(body.link_frame(j.index)[0][0], 6)) for j in body.joints()}
+    assert where == {"fork_steer": (0.25, 0.0, 0.05), "spin": (0.25, 0.0, 0.04),
+                     "left_wheel": (-0.15, 0.2, 0.05), "right_wheel": (-0.15, -0.2, 0.05)}
+    assert {j.name: j.child_link for j in body.joints()} == {
+        "fork_steer": "fork", "spin": "front", "left_wheel": "left", "right_wheel": "right"}

@@ -42,7 +42,9 @@ def test_the_highest_surface_under_each_point_is_found_on_every_kind_of_floor(ph
     # box, closed mesh (its bottom is hit too: the highest counts), box, open mesh, cylinder,
     # polyline (its hull's margin: 1 mm), the ground in the open walls room, a table's top
     assert tops == pytest.approx([0.19, 0.034, 0.01, 0.10, 0.08, 0.061, 0.0, 0.315], abs=1e-3)
-    assert np.isnan(physics.surfaces_below(np.array([(70.0, 0.0)]), 0.5, -0.2)).all()
+    # out in the open, 70 m away: the ground (a plane without end), and nothing above it
+    assert physics.surfaces_below(np.array([(70.0, 0.0)]), 0.5, -0.2) == pytest.approx([0.0])
+    assert np.isnan(physics.surfaces_below(np.array([(70.0, 0.0)]), 0.5, 0.05)).all()
 
 
 def test_only_surfaces_between_the_two_heights_count(physics):
@@ -78,6 +80,39 @@ def test_overlaps_name_the_collider_its_depth_and_top(physics):
         assert physics.overlaps(body, 0.01) == []           # resting on the ground
     finally:
         pybullet.removeBody(body, physicsClientId=physics.client)
+
+
+def test_the_ground_plane_is_a_half_space_without_end(physics):
+    """Far beyond its drawn 100 m: a cube sunk 5 cm into the ground overlaps it with its top
+    at 0 (not its unbounded box's), a point 3 m under it is in it, one above it is not."""
+    body = cube(physics, (500.0, -400.0, 0.05), 0.1)
+    try:
+        (uid, link, depth, top), = physics.overlaps(body, 0.01)
+        assert depth == pytest.approx(0.05, abs=0.002) and top == pytest.approx(0.0, abs=1e-6)
+        under, above = physics.solids_at(np.array([(500.0, -400.0, -3.0), (800.0, 0.0, 0.01)]))
+        assert under == {(uid, link)} and above == frozenset()
+    finally:
+        pybullet.removeBody(body, physicsClientId=physics.client)
+
+
+def test_a_tilted_plane_s_top_is_its_highest_point_over_what_overlaps_it(tmp_path):
+    """A plane rising 0.2 m per m along +x (<normal> -0.2 0 1), through (0, 0, 0.5): a cube
+    of half side 0.1 sunk 5 cm into it at x 50 overlaps it, its top at the cube box's uphill
+    edge (x 50.1)."""
+    geometry = "<geometry><plane><normal>-0.2 0 1</normal></plane></geometry>"
+    path = tmp_path / "slope.world"
+    path.write_text('<sdf version="1.6"><world name="w"><model name="slope"><static>true'
+                    '</static><pose>0 0 0.5 0 0 0</pose><link name="l"><collision name="c">%s'
+                    '</collision></link></model></world></sdf>' % geometry)
+    slope = WorldPhysics(load_world(str(path)), 0.0025)
+    try:
+        surface = 0.5 + 0.2 * 50.0
+        body = cube(slope, (50.0, 0.0, surface + 0.1 * np.hypot(1.0, 0.2) - 0.05), 0.1)
+        (_, _, depth, top), = slope.overlaps(body, 0.01)
+        uphill = pybullet.getAABB(body, physicsClientId=slope.client)[1][0]
+        assert top == pytest.approx(0.5 + 0.2 * uphill, abs=1e-4) and depth > 0.03
+    finally:
+        slope.close()
 
 
 def test_solids_at_finds_the_static_solid_holding_each_point(physics):

@@ -5,8 +5,8 @@ import numpy as np
 import pybullet
 import pytest
 
-from tutorial_turtlebot.sim.engine.world_bullet import (PLANE_MIN_EXTENT, WORLD_COLLISION_GROUP,
-                                                        WORLD_FRICTION, build_world)
+from tutorial_turtlebot.sim.engine.world_bullet import (WORLD_COLLISION_GROUP, WORLD_FRICTION,
+                                                        build_world)
 from tutorial_turtlebot.sim.files.sdf.world_catalogue import WORLDS, resolve_world
 from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 
@@ -81,12 +81,67 @@ def test_walls_close_the_arena(tb3):
         assert body in walls and distance < 2.933 + 0.55, degree
 
 
-def test_ground_top_is_at_zero_and_wide(tb3):
+def test_ground_top_is_at_zero_and_without_end(tb3):
+    """The ground plane, drawn 100 m square, collides far beyond that."""
     bodies, cid = tb3
-    for x, y in ((0.5, 0.5), (20.0, -30.0), (PLANE_MIN_EXTENT / 2 - 0.5, 0.0)):
+    for x, y in ((0.5, 0.5), (20.0, -30.0), (49.5, 0.0), (60.0, 0.0), (-3000.0, 800.0)):
         body, distance = cast(cid, (x, y, 1.0), (x, y, -1.0))
         assert body == bodies["ground_plane::link::collision"]
         assert 1.0 - distance == pytest.approx(0.0, abs=1e-6)
+
+
+def plane_world(tmp_path, plane, pose="0 0 0 0 0 0"):
+    """A world of one static model at ``pose`` whose link has one ``plane`` (its <plane>
+    element's inside) as its collision and its visual."""
+    geometry = "<geometry><plane>%s</plane></geometry>" % plane
+    path = tmp_path / "plane.world"
+    path.write_text('<sdf version="1.6"><world name="w"><model name="floor"><static>true</static>'
+                    '<pose>%s</pose><link name="l"><collision name="c">%s</collision><visual '
+                    'name="v">%s</visual></link></model></world></sdf>'
+                    % (pose, geometry, geometry))
+    return load_world(str(path))
+
+
+def drop_cube(cid, position, orientation=(0, 0, 0, 1), seconds=2.0, half=0.1):
+    """(position, orientation) of a 1 kg cube of half side ``half`` let go at ``position``
+    (m, world), after ``seconds`` under gravity (pybullet's 1/240 s step)."""
+    pybullet.setGravity(0, 0, -9.8, physicsClientId=cid)
+    shape = pybullet.createCollisionShape(pybullet.GEOM_BOX, halfExtents=(half,) * 3,
+                                          physicsClientId=cid)
+    cube = pybullet.createMultiBody(1.0, shape, basePosition=position,
+                                    baseOrientation=orientation, physicsClientId=cid)
+    for _ in range(round(seconds * 240)):
+        pybullet.stepSimulation(physicsClientId=cid)
+    return pybullet.getBasePositionAndOrientation(cube, physicsClientId=cid)
+
+
+def test_a_cube_far_beyond_a_100_m_plane_lands_on_it(tmp_path, client):
+    """Gazebo's plane is infinite: a cube let go at (5000, 5000), 50 times farther out than
+    the plane is drawn, rests on it at its height, where it was let go."""
+    bodies = build_world(plane_world(tmp_path, "<size>100 100</size>", "0 0 0.3 0 0 0"), client)
+    low, high = pybullet.getAABB(bodies["floor::l::c"], physicsClientId=client)
+    assert min(low) < -1e20 and max(high) > 1e20         # Bullet's plane: no bounds
+    (x, y, z), _ = drop_cube(client, (5000.0, 5000.0, 1.0))
+    assert z == pytest.approx(0.3 + 0.1, abs=2e-3)
+    assert math.hypot(x - 5000.0, y - 5000.0) < 0.01
+
+
+def test_a_tilted_plane_holds_a_cube_on_its_surface(tmp_path, client):
+    """A plane of <normal> 0 -sin(0.2) cos(0.2) (an 11 degree slope, rising along +y) in a
+    model raised 0.5 m: a cube set on it 100 m out, far beyond its drawn 4 m, stays on its
+    surface (friction 1 holds it)."""
+    slope = 0.2
+    normal = np.array((0.0, -math.sin(slope), math.cos(slope)))
+    bodies = build_world(plane_world(tmp_path, "<normal>0 %r %r</normal><size>4 4</size>"
+                                     % tuple(normal[1:].tolist()), "0 0 0.5 0 0 0"), client)
+    start = np.array((80.0, 60.0, 0.5)) + (60.0 * math.tan(slope)) * np.array((0, 0, 1))
+    body, distance = cast(client, tuple(start + (0, 0, 1.0)), tuple(start - (0, 0, 1.0)))
+    assert body == bodies["floor::l::c"] and distance == pytest.approx(1.0, abs=1e-4)
+    orientation = pybullet.getQuaternionFromEuler((slope, 0.0, 0.0))
+    position, _ = drop_cube(client, tuple(start + 0.11 * normal), orientation)
+    off = np.array(position) - start
+    assert float(off @ normal) == pytest.approx(0.1, abs=2e-3)      # on the surface
+    assert np.linalg.norm(off - (off @ normal) * normal) < 0.01      # not sliding
 
 
 def test_rays_outside_the_world_group_miss(tb3):

@@ -1,5 +1,6 @@
 """model_tree: which joints make trees, and each tree's links in the engine's order (the base,
-then each link after its parent; an anchor's massless base; a two-axis joint's light link)."""
+then the links depth first, as pybullet numbers them; an anchor's massless base; a two-axis
+joint's light link)."""
 from tutorial_turtlebot.sim.files.model_tree import forest, trees
 from tutorial_turtlebot.sim.files.world_types import WORLD_LINK, Joint, Link, Model
 
@@ -28,6 +29,16 @@ def test_a_chain_is_one_tree_in_parent_order():
     entries = tree.body_links()
     assert [(e.link, e.parent) for e in entries] == [("a", -1), ("b", -1), ("c", 0)]
     assert not tree.single and not tree.fixed_base
+
+
+def test_a_branching_tree_is_listed_depth_first():
+    """pybullet numbers a multibody's links depth first, whatever the order they are given
+    in: a fork's steered wheel comes right after the fork, before the rear wheels."""
+    [tree] = trees(model(["base", "fork", "left", "right", "front"], [
+        j("steer", "base", "fork"), j("left", "base", "left"), j("right", "base", "right"),
+        j("spin", "fork", "front")]))
+    assert [(e.link, e.parent) for e in tree.body_links()] == [
+        ("base", -1), ("fork", -1), ("front", 0), ("left", -1), ("right", -1)]
 
 
 def test_lone_links_are_single_trees():

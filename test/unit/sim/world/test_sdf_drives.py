@@ -182,3 +182,18 @@ def test_a_wheel_joint_the_model_lacks_is_one_warning_and_no_drive(world):
                                "right_rear_joint"]) == []
     assert len(warnings) == 1
     assert "<leftRearJoint> 'rear_left_hinge' is not a joint of model 'skidbot'" in warnings[0]
+
+
+def test_the_yaw_inertia_is_about_the_model_z_axis_whatever_the_principal_axes(world):
+    """The base is built along its principal axes; the drive's yaw inertia is still the one
+    about the model's z: an inertia of moments (0.01, 0.02, 0.03) turned 90 degrees about y
+    puts its 0.01 about z."""
+    turned = PUCK.replace(
+        "<inertia><ixx>0.017</ixx><iyy>0.017</iyy><izz>0.03</izz></inertia>",
+        "<pose>0 0 0 0 1.5707963267948966 0</pose>"
+        "<inertia><ixx>0.01</ixx><iyy>0.02</iyy><izz>0.03</izz></inertia>")
+    assert turned != PUCK
+    drive = spawn(world, turned, "puck")
+    mass, yaw_inertia = drive.body().mass_and_yaw_inertia()
+    assert mass == pytest.approx(2.0)
+    assert yaw_inertia == pytest.approx(0.01, abs=1e-6)

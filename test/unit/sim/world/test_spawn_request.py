@@ -203,3 +203,20 @@ def test_mesh_budgets_are_checked_on_the_files_read(tmp_path, monkeypatch):
 def test_reading_that_takes_too_long_is_refused():
     with pytest.raises(RequestError, match="took more than 0 s; nothing was spawned"):
         spawn_request.prepare_spawn("crate", BOX, seconds=0.0)
+
+
+NAMESPACED = """<sdf version="1.6"><model name="m"><link name="l"><inertial><mass>1</mass>
+<inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>
+<collision name="c"><geometry><box><size>.2 .2 .2</size></box></geometry></collision></link>
+<plugin name="given" filename="libgazebo_ros_p3d.so"><bodyName>l</bodyName>
+<topicName>truth</topicName></plugin>
+<plugin name="own" filename="libgazebo_ros_p3d.so"><robotNamespace>mine</robotNamespace>
+<bodyName>l</bodyName><topicName>truth</topicName></plugin></model></sdf>"""
+
+
+def test_spawn_robot_namespace_goes_to_each_sdf_plugin_without_its_own():
+    """As gazebo_ros' spawn service: <robotNamespace> added where a plugin has none."""
+    plugins = parse_spawn("m", NAMESPACED, robot_namespace="ns1").world.model_plugins
+    assert [(p.name, p.robot_namespace) for p in plugins] == [("given", "ns1"), ("own", "mine")]
+    plugins = parse_spawn("m", NAMESPACED).world.model_plugins
+    assert [p.robot_namespace for p in plugins] == ["", "mine"]

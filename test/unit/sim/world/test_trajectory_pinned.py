@@ -10,10 +10,13 @@ Two checks, because a pybullet built by another compiler is not bit-identical:
   digest to pin.
 - **within a tolerance, on every build**: the poses every 0.1 s, every 10th ray of every scan
   and every 10th odometry reading, against the reference in data/trajectory_reference.json:
-  poses and odometry to within 1 um; ranges to within 10 um but for at most 1 % of the rays,
-  which may differ by up to 1 cm. The builds' poses differ by less than 1e-9 m, and so do most
-  ranges, but a ray that grazes an edge can land elsewhere (1.2 mm, once, between PyPI's wheel
-  and Debian 13's build). A command changed by 1 mm/s moves the robot by about 1 mm.
+  poses and odometry to within 1 um; ranges to within 0.1 mm but for at most 1 % of the rays,
+  which may differ by up to 1 cm. The builds' poses differ by less than 1e-9 m (PyPI's wheel
+  and Debian 13's build: not at all), but Bullet casts a ray on a box or cylinder by an
+  iteration that stops within its tolerance, and two compilers stop at different points: 10
+  of the 836 sampled hits differ by 10 to 88 um between those two builds; a ray that grazes an
+  edge can land elsewhere (1.2 mm, once). A command changed by 1 mm/s moves the robot by about
+  1 mm.
 
 If a change to the physics is meant, take the new digest and reference from the failure
 message (``python3 test/unit/sim/world/test_trajectory_pinned.py --write`` rewrites the
@@ -47,13 +50,13 @@ READINGS = {
 }
 # pybullet build -> digest (see pybullet_build)
 PINNED = {
-    "PyPI wheel": "f7615ef44f1030ec4c441ef980db121d62da9a90742d647339ad2f8147b94421",
+    "PyPI wheel": "da8798ccc5a1317a2c6a7718417e260cebcb7dd249d2c67a898e5b7922c3db67",
     "built on debian 13, Python 3.13": (
-        "2f7df3254e1463df727edcd8344150cb6e74a37e0ce6109552f0c3eef55acd5a"),
+        "cda37883f087d9f79ce2d499dc74cd62f1309affc0aef10771f37b3d285082a7"),
 }
 REFERENCE = os.path.join(unit_paths.DATA,
                          "trajectory_reference.json")
-TOLERANCE = {"poses": 1e-6, "odom": 1e-6, "ranges": 1e-5}
+TOLERANCE = {"poses": 1e-6, "odom": 1e-6, "ranges": 1e-4}
 GRAZING_RAYS = 0.01    # the share of ranges that may be off by more, up to GRAZING_LIMIT
 GRAZING_LIMIT = 0.01   # m
 

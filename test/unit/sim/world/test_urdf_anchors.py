@@ -1,5 +1,5 @@
 """Plain URDF models held in place as Gazebo holds them (sim/world/world_spawns.py,
-world_models.py, engine/urdf_loader.py): a static one (<gazebo><static>true</static>) and one
+world_models.py, files/urdf/urdf_to_sdf.py): a static one (<gazebo><static>true</static>) and one
 joined to the world by a root link "world" stay where they were spawned while a plain one
 falls, are listed as Gazebo lists them, are hit by a robot and seen by its laser, teleport, and
 come back from the body pool; a mesh file found nowhere is left out with one warning. The

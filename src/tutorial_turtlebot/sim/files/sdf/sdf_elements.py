@@ -171,7 +171,8 @@ TABLE: Dict[str, Dict[str, Rule]] = {
         "box": _rule(S, "built; a side of 0 is 0.1 mm (one warning per file)"),
         "cylinder": _rule(S, "built"),
         "sphere": _rule(S, "built"),
-        "plane": _rule(S, "built (its collision 100 m square at least)"),
+        "plane": _rule(S, "an infinite plane, as in Gazebo (its <size> only drawn); refused "
+                          "in a model that is not <static>"),
         "polyline": _rule(S, "one extruded polygon"),
         "mesh": _rule(S, "Collada, STL, OBJ (see meshes); one naming its file in SDF 1.2's "
                          "<filename> alone is one warning", _names_a_uri,

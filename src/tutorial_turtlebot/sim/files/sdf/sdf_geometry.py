@@ -1,6 +1,7 @@
 """Geometry helpers of SDF shapes, for the world loader (world_sdf): a box's size (a side of 0
-as Gazebo's ODE takes it), a plane's size (beyond limits.MAX_SIZE clamped: Gazebo's plane is
-infinite) and its normal as a pose, a polyline's polygon cleaned and checked.
+as Gazebo's ODE takes it), a plane's drawn size (beyond limits.MAX_SIZE clamped: the plane
+collides as an infinite plane all the same) and its normal as a pose, a polyline's polygon
+cleaned and checked.
 No ROS, no pybullet.
 
 Units: metres, radians; poses are kinematics.XyzRpy in the frame of the shape's parent.
@@ -15,7 +16,7 @@ from ...kinematics import ZERO_XYZ_RPY, XyzRpy, cross_2d, rpy_from_matrix
 
 Point = Tuple[float, float]
 ZERO_SIDE = "a <box> side of 0 is built %g mm thick" % (limits.MIN_BOX_SIDE * 1000)
-PLANE_CLAMPED = "the most drawn; Gazebo's plane is infinite, its size only drawn"
+PLANE_CLAMPED = "only its drawing is clamped: it collides as an infinite plane, as in Gazebo"
 
 
 def box_size(reader, box: Element) -> Tuple[float, float, float]:
@@ -40,11 +41,11 @@ def box_size(reader, box: Element) -> Tuple[float, float, float]:
 
 
 def plane_size(reader, plane: Element) -> Tuple[float, float]:
-    """The drawn sides (m) of ``plane``'s <size> (SDF's default 1 1). Gazebo's plane collides
-    as an infinite plane and libsdformat bounds no size: the size only says what is drawn. A
-    side beyond limits.MAX_SIZE is clamped to it, with one warning; a side that is not a
-    positive finite number stays refused (limits.size_problem). The warning is said once
-    per file."""
+    """The drawn sides (m) of ``plane``'s <size> (SDF's default 1 1). A plane collides as an
+    infinite plane, in Gazebo and here (world_bullet), and libsdformat bounds no size: the size
+    only says what is drawn. A side beyond limits.MAX_SIZE is drawn that long, with one
+    warning (the collision stays infinite); a side that is not a positive finite number stays
+    refused (limits.size_problem). The warning is said once per file."""
     node = plane.child("size")
     if node is None:
         return (1.0, 1.0)

@@ -1,1 +1,1 @@
-"""URDF: robots and spawned models, and the URDF text pybullet loads."""
+"""URDF: robots and spawned models, read and checked, and the SDF model Gazebo makes of them."""

@@ -15,7 +15,7 @@ it (urdf_gazebo); a file that is no mesh, or a bad scale, is refused. The file's
 read later, by ``mesh_file.load_mesh``, when a body is built.
 What Gazebo's URDF conversion adds (urdf_gazebo): a reference-less ``<gazebo>`` block's
 ``<static>`` (``RobotDescription.static``), and a root link named ``world``, to which the model is
-joined (``model_links``; urdf_to_sdf converts a plain URDF into the SDF model Gazebo makes).
+joined (``model_links``; urdf_to_sdf converts a URDF into the SDF model Gazebo makes).
 """
 import os
 from dataclasses import dataclass, field

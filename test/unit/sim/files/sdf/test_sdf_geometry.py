@@ -1,13 +1,15 @@
 """SDF geometry as the world loader reads it (sdf_geometry): a plane's <size> beyond the abuse
-limit is drawn (and collides) limits.MAX_SIZE a side with one warning, as Gazebo's plane is
-infinite; a Waffle Pi stands on the 40 km plane of test/fixtures/worlds/big_plane.world (ours).
-No ROS."""
+limit is drawn limits.MAX_SIZE a side with one warning, and the plane still collides as an
+infinite plane, as Gazebo's; a Waffle Pi stands on the 40 km plane of
+test/fixtures/worlds/big_plane.world (ours). No ROS."""
 import math
 import os
 
+import pybullet
 import pytest
 
 from tutorial_turtlebot.errors import WorldError
+from tutorial_turtlebot.sim.engine.world_bullet import build_world
 from tutorial_turtlebot.sim.files import limits
 from tutorial_turtlebot.sim.files.sdf.world_sdf import load_world
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
@@ -25,12 +27,18 @@ def plane_world(tmp_path, size):
     return str(path)
 
 
-def test_a_40_km_plane_is_drawn_at_the_limit_with_one_warning():
+def test_a_40_km_plane_is_drawn_at_the_limit_with_one_warning_and_collides_everywhere(client):
     world = load_world(BIG_PLANE)
     assert [s.size for s in world.shapes] == [(limits.MAX_SIZE, limits.MAX_SIZE)] * 2
     [warning] = world.warnings
     assert "plane <size> 40000 40000 drawn 10000 x 10000 m" in warning
-    assert "Gazebo's plane is infinite" in warning and "\n" not in warning
+    assert "only its drawing is clamped" in warning and "infinite plane" in warning
+    assert "\n" not in warning and len(warning) <= 200
+    ground = build_world(world, client)["ground_plane::link::collision"]
+    # within the drawn 10 km, beyond it, and beyond the 40 km written
+    for x, y in ((0.0, 0.0), (4000.0, -4900.0), (15000.0, 15000.0), (-30000.0, 25000.0)):
+        hit = pybullet.rayTestBatch([(x, y, 1.0)], [(x, y, -1.0)], physicsClientId=client)[0]
+        assert hit[0] == ground and hit[3][2] == pytest.approx(0.0, abs=1e-3), (x, y)
 
 
 def test_a_plane_within_the_limit_is_as_written_and_a_bad_size_refused(tmp_path):
@@ -62,6 +70,7 @@ def test_a_waffle_pi_stands_on_the_40_km_plane_as_on_the_empty_worlds():
     """Where it was spawned, on z 0, as level as on the empty world's 100 m ground plane."""
     on_big, on_empty = standing(BIG_PLANE), standing("empty")
     x, y, z, roll, pitch, yaw = on_big
-    assert math.hypot(x - 3.0, y + 2.0) < 1e-3 and abs(z) < 0.005 and yaw == pytest.approx(0.5)
+    assert math.hypot(x - 3.0, y + 2.0) < 1e-3 and abs(z) < 0.005
+    assert yaw == pytest.approx(0.5, abs=1e-5)    # it lands from 1 mm: a few microradians
     assert abs(roll) < 0.01 and abs(pitch) < 0.01
     assert on_big == pytest.approx(on_empty, abs=1e-5)

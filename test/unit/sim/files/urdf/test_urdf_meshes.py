@@ -1,6 +1,6 @@
-"""URDFs with mesh visuals and collisions (sim/urdf_file, sim/urdf_meshes, spawning): reading
-``package://``, ``file://`` and relative mesh filenames, the URDF pybullet loads, robots and
-plain models built from them, each error as one line. No ROS master."""
+"""URDFs with mesh visuals and collisions (sim/urdf_file, spawning): reading
+``package://``, ``file://`` and relative mesh filenames, robots and plain models built from
+them, each error as one line. No ROS master."""
 import os
 import subprocess
 import sys
@@ -12,13 +12,12 @@ import pybullet
 import pytest
 
 from tutorial_turtlebot.errors import RequestError, UserError
-from tutorial_turtlebot.sim.files.urdf import urdf_meshes
 from tutorial_turtlebot.sim.files.meshes.mesh_file import load_mesh
 from tutorial_turtlebot.sim.world.simulation import SimConfig, Simulation
 from tutorial_turtlebot.sim.files.urdf.urdf_file import read_urdf, read_urdf_text, urdf_path
 from tutorial_turtlebot.sim.world.world_control import WorldControl
 
-from unit_helpers import run, write
+from unit_helpers import run, urdf_body, write
 import unit_paths
 
 HERE = unit_paths.UNIT
@@ -186,70 +185,30 @@ def test_the_fixture_xacro_files_expand_to_the_shipped_robots_with_meshes(tmp_pa
         assert (PKG + "sensors/r200.dae" in meshes) == (model == "waffle")
 
 
-# --- the URDF pybullet loads ------------------------------------------------------------------
+# --- a robot's mesh body ------------------------------------------------------------------------
 
-def test_mesh_visuals_become_obj_parts_in_their_colours_and_collisions_convex_hulls(tmp_path):
-    urdf_meshes.cache_clear()
+def test_mesh_visuals_are_drawn_in_their_files_colours_and_collisions_are_convex_hulls(client):
+    """A robot's mesh visual is drawn as any model's is: its file's colour parts (a URDF
+    <material> colour is not converted, as Gazebo 11 converts URDF), Collada's unit applied;
+    its mesh collision collides as the mesh's convex hull."""
     text = """<robot name="r"><material name="dark"><color rgba="0.3 0.3 0.3 1"/></material>
-      <link name="cam">
-        <visual name="v"><geometry><mesh filename="%(r200)s"/></geometry></visual>
+      <link name="cam"><inertial><mass value="1"/>
+        <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
         <visual><geometry><mesh filename="%(r200)s"/></geometry><material name="dark"/></visual>
         <collision><geometry><mesh filename="%(lds)s" scale="0.001 0.001 0.001"/></geometry>
         </collision>
-        <visual><geometry><box size="1 1 1"/></geometry></visual>
       </link></robot>""" % {"r200": PKG + "sensors/r200.dae", "lds": PKG + "sensors/lds.stl"}
-    robot = ElementTree.fromstring(text)
-    urdf_meshes.bullet_meshes(robot, str(tmp_path))
-    visuals = robot.find("link").findall("visual")
-    assert len(visuals) == 5                       # 2 parts + 2 parts + the box
-    assert [v.get("name") for v in visuals[:2]] == ["v_part0", "v_part1"]
-    own = [v.find("material/color").get("rgba") for v in visuals[:2]]
-    assert own == ["0.2 0.2 0.2 1", "0.75 0.75 0.8 1"]           # the Collada file's colours
-    assert [v.find("material").get("name") for v in visuals[2:4]] == ["dark", "dark"]
-    assert visuals[2].find("material/color") is None              # the URDF's overrides
-    assert visuals[4].find("geometry/box") is not None
-    for visual in visuals[:4]:
-        mesh = visual.find("geometry/mesh")
-        assert os.path.isfile(mesh.get("filename")) and mesh.get("filename").endswith(".obj")
-        assert "scale" not in mesh.attrib                        # the file is in metres
+    body = urdf_body(client, text)
+    colours = sorted(tuple(round(c, 2) for c in v[7])
+                     for v in pybullet.getVisualShapeData(body, physicsClientId=client))
+    assert colours == [(0.2, 0.2, 0.2, 1.0), (0.75, 0.75, 0.8, 1.0)]   # the Collada file's
     r200 = load_mesh(os.path.join(MESHES, "sensors", "r200.dae"))
     lo, hi = r200.bounds                                           # Collada's unit: mm
     assert hi - lo == pytest.approx((0.132, 0.020, 0.012))
-    hull = robot.find("link/collision/geometry/mesh")
-    vertices = [line for line in open(hull.get("filename")) if line.startswith("v ")]
-    assert len(vertices) == 64                     # the 32-sided cylinder's corners only
-    points = np.array([[float(x) for x in line.split()[1:]] for line in vertices])
-    assert np.ptp(points, axis=0) == pytest.approx((0.11, 0.11, 0.0315), abs=1e-3)
-
-
-def test_converted_files_are_made_once_per_process(tmp_path):
-    urdf_meshes.cache_clear()
-    first = urdf_meshes.visual_parts(os.path.join(MESHES, "bases", "burger_base.stl"),
-                                     (0.001,) * 3)
-    again = urdf_meshes.visual_parts(os.path.join(MESHES, "bases", "burger_base.stl"),
-                                     (0.001,) * 3)
-    other = urdf_meshes.visual_parts(os.path.join(MESHES, "bases", "burger_base.stl"),
-                                     (0.002,) * 3)
-    assert first == again and first != other
-    folder = os.path.dirname(first[0][0])
-    assert os.path.basename(folder).startswith("tutorial_turtlebot_urdf_meshes_%d_" % os.getpid())
-    urdf_meshes.cache_clear()
-    assert not os.path.exists(folder)
-
-
-def test_folders_of_dead_processes_are_swept(tmp_path, monkeypatch):
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
-    urdf_meshes.cache_clear()
-    dead = subprocess.Popen([sys.executable, "-c", "pass"])
-    dead.wait()
-    stale = tmp_path / ("tutorial_turtlebot_urdf_meshes_%d_abc" % dead.pid)
-    stale.mkdir()
-    (stale / "x.obj").write_text("v 0 0 0\n")
-    alive = tmp_path / ("tutorial_turtlebot_urdf_meshes_%d_abc" % os.getppid())
-    alive.mkdir()
-    urdf_meshes.hull_file(os.path.join(MESHES, "wheels", "left_tire.stl"))
-    assert not stale.exists() and alive.exists()
-    urdf_meshes.cache_clear()
+    [shape] = pybullet.getCollisionShapeData(body, -1, physicsClientId=client)
+    assert shape[2] == pybullet.GEOM_MESH
+    low, high = pybullet.getAABB(body, -1, physicsClientId=client)   # 2 mm more a side
+    assert np.subtract(high, low) - 0.004 == pytest.approx((0.11, 0.11, 0.0315), abs=1e-3)
 
 
 # --- bodies in the simulation -----------------------------------------------------------------
@@ -272,26 +231,21 @@ def dynamics(sim, body):
 
 def test_a_mesh_robot_weighs_what_its_inertials_say_and_drives(sims, tmp_path, monkeypatch):
     """The Burger with mesh visuals and a mesh laser housing: the same masses, inertias and
-    centre of mass as the shipped primitive Burger; it stands on its wheels and drives; the
-    temporary URDF is gone after the spawn, the converted meshes are in the cache folder."""
+    centre of mass as the shipped primitive Burger; it stands on its wheels and drives; no
+    file of its building is left in the temporary folder."""
     empty, burger = sims
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
-    urdf_meshes.cache_clear()
     wc = WorldControl(empty)
     wc.spawn("meshy", mesh_burger(), ((0.0, 3.0, 0.0), (0, 0, 0, 1)), kind="urdf",
              robot_namespace="meshy")
     robot = empty.robots["meshy"]
     assert dynamics(empty, robot.body.robot) == pytest.approx(
         dynamics(burger, burger.robot.body.robot), rel=1e-6)
-    assert robot.body._com_in_footprint[0] == pytest.approx(
-        burger.robot.body._com_in_footprint[0], abs=1e-6)
-    left = [p for p in os.listdir(tmp_path)]
-    assert len(left) == 1 and left[0].startswith("tutorial_turtlebot_urdf_meshes_"), left
-    files = sorted(os.listdir(tmp_path / left[0]))
-    assert len(files) == 5          # 4 visual meshes (one colour each) and 1 hull
+    assert robot.body.com_in_root[0] == pytest.approx(burger.robot.body.com_in_root[0],
+                                                      abs=1e-6)
     wc.spawn("meshy2", mesh_burger(), ((0.0, 4.0, 0.0), (0, 0, 0, 1)), kind="urdf",
              robot_namespace="meshy2")
-    assert sorted(os.listdir(tmp_path / left[0])) == files      # made once
+    assert os.listdir(tmp_path) == []
     run(empty, 0.5)
     assert robot.ground_truth()[0][2] == pytest.approx(0.0, abs=0.003)
     robot.command(0.2, 0.0)
@@ -387,19 +341,3 @@ def test_a_mesh_found_nowhere_is_left_out_of_the_spawn_with_a_warning(sims, kind
     assert len(lost) == 1 and "link 'base_link' <visual> left out" in lost[0], warnings
     assert "wheel_left_link" in wc.model_properties(name).body_names
     wc.delete(name)
-
-
-def test_converted_files_are_kept_for_the_pairs_used_last(tmp_path, monkeypatch):
-    """At most MAX_CONVERTED (file, scale) pairs keep their files; an older one's files are
-    removed, and written again when it comes back."""
-    import os
-    from tutorial_turtlebot.sim.files.urdf import urdf_meshes
-    monkeypatch.setattr(urdf_meshes, "MAX_CONVERTED", 2)
-    obj = tmp_path / "t.obj"
-    obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
-    hulls = [urdf_meshes.hull_file(str(obj), (s, s, s)) for s in (1.0, 2.0, 3.0)]
-    assert not os.path.exists(hulls[0]) and all(os.path.exists(h) for h in hulls[1:])
-    again = urdf_meshes.hull_file(str(obj), (1.0, 1.0, 1.0))
-    assert os.path.exists(again) and not os.path.exists(hulls[1])
-    parts = [urdf_meshes.visual_parts(str(obj), (s, s, s)) for s in (1.0, 2.0, 3.0)]
-    assert not os.path.exists(parts[0][0][0]) and os.path.exists(parts[2][0][0])
