@@ -14,6 +14,7 @@ Joint limits, damping and friction (a velocity motor of that force holding it, a
 models' joints are held) are set as the file says; a ball joint is pybullet's spherical one.
 Units: metres, kilograms, kg m^2; poses ((x, y, z), (qx, qy, qz, qw)) in the world frame.
 """
+import math
 import tempfile
 from typing import Dict, List, Optional, Sequence, Tuple
 
@@ -59,11 +60,48 @@ def _principal(inertial: Inertial):
     ixx, iyy, izz, ixy, ixz, iyz = inertial.inertia
     if ixy == ixz == iyz == 0.0:
         return (0.0, 0.0, 0.0, 1.0), (ixx, iyy, izz)
-    tensor = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
-    moments, axes = np.linalg.eigh(tensor)
-    if np.linalg.det(axes) < 0:
-        axes[:, 2] = -axes[:, 2]
-    return quat_from_matrix(axes), tuple(float(m) for m in moments)
+    moments, axes = principal_axes([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+    return quat_from_matrix(np.array(axes)), moments
+
+
+JACOBI_SWEEPS = 50   # at most; a 3x3 tensor takes five or six
+
+
+def principal_axes(tensor) -> Tuple[Tuple[float, float, float], List[List[float]]]:
+    """(moments ascending, axes: a right-handed rotation whose columns are the principal axes)
+    of a symmetric 3x3 inertia ``tensor`` (kg m^2), by Jacobi's rotations in plain floats.
+    Not numpy's eigh: LAPACK's last bits differ between numpy's builds (1.24 and 2.x gave
+    principal frames 3e-15 apart), and the robots' paths are chaotic enough to make that a
+    millimetre in five seconds; these operations round alike on every build."""
+    a = [[float(v) for v in row] for row in tensor]
+    v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    for _ in range(JACOBI_SWEEPS):
+        for p, q in ((0, 1), (0, 2), (1, 2)):
+            apq = a[p][q]
+            if abs(apq) <= 1e-17 * (abs(a[p][p]) + abs(a[q][q])):   # below rounding
+                a[p][q] = a[q][p] = 0.0
+                continue
+            theta = (a[q][q] - a[p][p]) / (2.0 * apq)
+            t = (1.0 if theta >= 0.0 else -1.0) / (abs(theta) + math.sqrt(theta * theta + 1.0))
+            c = 1.0 / math.sqrt(t * t + 1.0)
+            s = t * c
+            for k in range(3):      # A J, then V J
+                a[k][p], a[k][q] = c * a[k][p] - s * a[k][q], s * a[k][p] + c * a[k][q]
+                v[k][p], v[k][q] = c * v[k][p] - s * v[k][q], s * v[k][p] + c * v[k][q]
+            for k in range(3):      # J^T (A J)
+                a[p][k], a[q][k] = c * a[p][k] - s * a[q][k], s * a[p][k] + c * a[q][k]
+            a[p][q] = a[q][p] = 0.0
+        if a[0][1] == a[0][2] == a[1][2] == 0.0:
+            break
+    order = sorted(range(3), key=lambda i: a[i][i])
+    axes = [[v[row][i] for i in order] for row in range(3)]
+    det = (axes[0][0] * (axes[1][1] * axes[2][2] - axes[1][2] * axes[2][1])
+           - axes[0][1] * (axes[1][0] * axes[2][2] - axes[1][2] * axes[2][0])
+           + axes[0][2] * (axes[1][0] * axes[2][1] - axes[1][1] * axes[2][0]))
+    if det < 0.0:
+        for row in axes:
+            row[2] = -row[2]
+    return (a[order[0]][order[0]], a[order[1]][order[1]], a[order[2]][order[2]]), axes
 
 
 def movable_body(link: Link, shapes: List[Shape], client: Client, mesh_dir: str) -> int:

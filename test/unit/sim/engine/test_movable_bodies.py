@@ -266,3 +266,25 @@ def test_each_joint_moves_the_link_it_names_in_a_branching_tree(client):
                      "left_wheel": (-0.15, 0.2, 0.05), "right_wheel": (-0.15, -0.2, 0.05)}
     assert {j.name: j.child_link for j in body.joints()} == {
         "fork_steer": "fork", "spin": "front", "left_wheel": "left", "right_wheel": "right"}
+
+
+def test_principal_axes_diagonalise_the_tensor_right_handed_and_ascending():
+    """Jacobi's rotations in plain floats (not numpy's eigh, whose last bits differ between
+    numpy builds): R^T I R is diagonal with the moments ascending, R a rotation."""
+    from tutorial_turtlebot.sim.engine.movable_bodies import principal_axes
+    rng = np.random.default_rng(7)
+    tensors = [np.array([[0.00717896283442594, -1.2294101e-05, 0.0005767404678225616],
+                         [-1.2294101e-05, 0.007218044692567651, -5.0120904e-06],
+                         [0.0005767404678225616, -5.0120904e-06, 0.004138580358141712]])]
+    for _ in range(50):
+        q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        tensors.append(q @ np.diag(rng.uniform(1e-6, 1.0, 3)) @ q.T)
+    tensors.append(np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 0.0, 3.0]]))  # a repeated 3
+    for tensor in tensors:
+        moments, axes = principal_axes(tensor.tolist())
+        r = np.array(axes)
+        assert list(moments) == sorted(moments)
+        assert np.allclose(r.T @ r, np.eye(3), atol=1e-12) and np.linalg.det(r) > 0
+        scale = np.abs(tensor).max()
+        assert np.allclose(r.T @ tensor @ r, np.diag(moments), atol=1e-12 * scale)
+        assert np.allclose(moments, np.linalg.eigvalsh(tensor), atol=1e-12 * scale)

@@ -50,7 +50,7 @@ READINGS = {
 }
 # pybullet build -> digest (see pybullet_build)
 PINNED = {
-    "PyPI wheel": "da8798ccc5a1317a2c6a7718417e260cebcb7dd249d2c67a898e5b7922c3db67",
+    "PyPI wheel": "0f8d5216c18cfd5375c5a2108258163fe648b8485005ee20b098ea06e62c32ab",
     "built on debian 13, Python 3.13": (
         "cda37883f087d9f79ce2d499dc74cd62f1309affc0aef10771f37b3d285082a7"),
 }
