@@ -52,7 +52,7 @@ READINGS = {
 PINNED = {
     "PyPI wheel": "0f8d5216c18cfd5375c5a2108258163fe648b8485005ee20b098ea06e62c32ab",
     "built on debian 13, Python 3.13": (
-        "cda37883f087d9f79ce2d499dc74cd62f1309affc0aef10771f37b3d285082a7"),
+        "d453ddee7c41e269d953861b3a4d454ffdef614baede02227aa0f83694abe259"),
 }
 REFERENCE = os.path.join(unit_paths.DATA,
                          "trajectory_reference.json")
