@@ -152,7 +152,8 @@ def test_a_teleport_above_the_floor_is_honoured_and_the_robot_falls_onto_it(in_r
     sim, wc = in_room
     (x, y, _), top = RAISED["floor_box"]
     wc.set_model_state(ROBOT, at(x, y, 0.4), AT_REST)
-    assert wc.get_model_state(ROBOT)[0][0][2] == pytest.approx(0.4, abs=1e-9)
+    # to 0.1 um: the root link's pose goes through pybullet's transforms to the base and back
+    assert wc.get_model_state(ROBOT)[0][0][2] == pytest.approx(0.4, abs=1e-7)
     assert_on(sim, top, "fallen onto floor_box")
 
 
@@ -198,7 +199,7 @@ def test_a_robot_under_a_table_stays_on_the_ground(in_room):
         sim.close()
     sim, wc = in_room
     wc.set_model_state(ROBOT, at(*TABLE), AT_REST)
-    assert wc.get_model_state(ROBOT)[0][0][2] == pytest.approx(0.0, abs=1e-9)
+    assert wc.get_model_state(ROBOT)[0][0][2] == pytest.approx(0.0, abs=1e-7)
     assert stand(sim)[2] == pytest.approx(0.0, abs=0.003)
 
 
@@ -208,7 +209,7 @@ def test_a_movable_model_is_no_floor(in_room):
     wc.spawn("crate", box_sdf(0.15, 2.0), at(3.0, 3.0, 0.075))
     try:
         wc.set_model_state(ROBOT, at(3.0, 3.0), AT_REST)
-        assert wc.get_model_state(ROBOT)[0][0][2] == pytest.approx(0.0, abs=1e-9)
+        assert wc.get_model_state(ROBOT)[0][0][2] == pytest.approx(0.0, abs=1e-7)
     finally:
         wc.delete("crate")
 
