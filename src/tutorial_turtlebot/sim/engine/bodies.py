@@ -316,6 +316,14 @@ class Body:
         self.client.built_joints.pop(self.uid, None)
 
 
+def moment_about_z(moments, base_in_frame) -> float:
+    """kg m^2 about a frame's z axis, through the centre of mass, of a base whose principal
+    ``moments`` (kg m^2) lie along the axes of quaternion ``base_in_frame`` (the base's
+    orientation in that frame): a drive's yaw inertia, whatever the principal axes."""
+    z_in_base = np.array(pybullet.getMatrixFromQuaternion(base_in_frame)).reshape(3, 3)[2]
+    return float(z_in_base @ (np.array(moments) * z_in_base))
+
+
 def forget_joints(client: Client, uid: int) -> None:
     """Body ``uid`` was removed from ``client``: what was set of its joints is gone."""
     for key in [k for k in client.joints_set if k[0] == uid]:

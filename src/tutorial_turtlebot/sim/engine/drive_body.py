@@ -11,10 +11,8 @@ Gazebo's drives read the model's pose. The wheels' friction is the SDF's (their 
 """
 from typing import Mapping, Optional, Sequence, Tuple
 
-import numpy as np
-
 from . import collision_filters
-from .bodies import Body
+from .bodies import Body, moment_about_z
 from .bullet import pybullet
 from .robot_body import BRAKE_MOVED, BRAKE_POSITION_GAIN
 
@@ -40,6 +38,7 @@ class DriveBody:
             raise KeyError(missing[0])
         self.wheel_torque = wheel_torque
         self._sides = tuple(wheel_sides) if wheel_sides is not None else (0, 1)
+        self._base_in_model = in_model[1]
         self._model_in_base = pybullet.invertTransform(*in_model)
         self._held: Optional[Tuple[float, ...]] = None   # wheel angles the brake holds
         self._anchored: Optional[bool] = None           # unknown: set at the first call
@@ -66,9 +65,7 @@ class DriveBody:
         axis through its centre of mass: the base's frame is along its principal axes)."""
         base = self.base
         mass = sum(base.inertial(link).mass for link in range(-1, base.joint_count()))
-        axes = np.array(pybullet.getMatrixFromQuaternion(self._model_in_base[1])).reshape(3, 3)
-        moments = np.array(base.inertial(-1).moments)
-        return mass, float(axes[:, 2] @ (moments * axes[:, 2]))
+        return mass, moment_about_z(base.inertial(-1).moments, self._base_in_model)
 
     # --- commands -------------------------------------------------------------------------------
 

@@ -18,7 +18,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from . import collision_filters
-from .bodies import Body
+from .bodies import Body, moment_about_z
 from .bullet import pybullet
 from ...errors import UserError
 from .movable_bodies import model_base_frame, model_body
@@ -296,9 +296,8 @@ class RobotBody:
         client = self.client
         mass = sum(client.getDynamicsInfo(self.robot, link)[0]
                    for link in range(-1, client.getNumJoints(self.robot)))
-        axes = np.array(pybullet.getMatrixFromQuaternion(self.com_in_root[1])).reshape(3, 3)
-        moments = np.array(client.getDynamicsInfo(self.robot, -1)[2])
-        return mass, float(axes[2] @ (moments * axes[2]))
+        moments = client.getDynamicsInfo(self.robot, -1)[2]
+        return mass, moment_about_z(moments, self.com_in_root[1])
 
     def frame_in_footprint(self, frame: str) -> np.ndarray:
         """4x4 pose of a URDF frame (base_scan, imu_link, camera...) in the root link."""
